@@ -1,0 +1,179 @@
+// ID3D11Device mirror. Create with sp::CreateDevice; every Create* validates its arguments the way
+// D3D11 (and its debug layer) does and throws sp::Error naming the call and the object.
+//
+// Threading: like a D3D11 device created with D3D11_CREATE_DEVICE_SINGLETHREADED. The OpenGL
+// backend's context is current on the creating thread only.
+#pragma once
+#include <functional>
+#include <mutex>
+#include <string>
+#include <unordered_set>
+#include <sp/rhi/common.h>
+#include <sp/rhi/query.h>
+#include <sp/rhi/resource.h>
+#include <sp/rhi/shader.h>
+#include <sp/rhi/state.h>
+#include <sp/rhi/view.h>
+
+namespace sp {
+
+class DeviceContext;
+
+enum class Backend : uint8_t { Vulkan, OpenGL };
+const char* BackendName(Backend b);       // "vulkan", "gl"
+bool ParseBackend(std::string_view s, Backend* out);
+
+using MessageCallback = std::function<void(MessageSeverity, std::string_view)>;
+
+struct DeviceDesc {
+  Backend backend = Backend::Vulkan;
+  // Vulkan validation layers / GL debug output (KHR_debug, synchronous). Messages of Error
+  // severity are counted (ValidationErrorCount) and passed to messageCallback.
+  bool debug = true;
+  MessageCallback messageCallback;  // null: warnings and errors go to stderr
+};
+
+// What the device is, and what it measured about the driver when it started.
+struct DeviceInfo {
+  Backend backend = Backend::Vulkan;
+  std::string apiVersion;   // "Vulkan 1.3.230", "OpenGL 4.5 (Core Profile) Mesa 22.3.6"
+  std::string deviceName;   // "llvmpipe (LLVM 15.0.6, 256 bits)"
+  std::string driverName;   // "Mesa 22.3.6"
+  // Factor applied to D3D11 DepthBias to get the driver's constant bias, per depth format,
+  // measured at device creation by rendering a biased quad (see docs/porting.md).
+  float depthBiasScaleD16 = 1.0f;
+  float depthBiasScaleD24 = 1.0f;
+  float depthBiasScaleD32 = 1.0f;
+  bool validationEnabled = false;
+  uint64_t timestampFrequency = 0;  // ticks per second
+  uint32_t maxMsaaSamples = 1;      // largest of 1, 2, 4, 8 supported for colour and depth
+};
+
+enum FORMAT_SUPPORT : uint32_t {
+  FORMAT_SUPPORT_BUFFER = 0x1,
+  FORMAT_SUPPORT_IA_VERTEX_BUFFER = 0x2,
+  FORMAT_SUPPORT_IA_INDEX_BUFFER = 0x4,
+  FORMAT_SUPPORT_TEXTURE1D = 0x10,
+  FORMAT_SUPPORT_TEXTURE2D = 0x20,
+  FORMAT_SUPPORT_TEXTURE3D = 0x40,
+  FORMAT_SUPPORT_TEXTURECUBE = 0x80,
+  FORMAT_SUPPORT_SHADER_LOAD = 0x100,
+  FORMAT_SUPPORT_SHADER_SAMPLE = 0x200,
+  FORMAT_SUPPORT_SHADER_SAMPLE_COMPARISON = 0x400,
+  FORMAT_SUPPORT_MIP = 0x1000,
+  FORMAT_SUPPORT_RENDER_TARGET = 0x4000,
+  FORMAT_SUPPORT_BLENDABLE = 0x8000,
+  FORMAT_SUPPORT_DEPTH_STENCIL = 0x10000,
+  FORMAT_SUPPORT_MULTISAMPLE_RESOLVE = 0x40000,
+  FORMAT_SUPPORT_TYPED_UNORDERED_ACCESS_VIEW = 0x400000,
+  FORMAT_SUPPORT_MULTISAMPLE_RENDERTARGET = 0x200000,
+  FORMAT_SUPPORT_MULTISAMPLE_LOAD = 0x100000,
+  FORMAT_SUPPORT_SHADER_GATHER = 0x800000,
+  FORMAT_SUPPORT_SHADER_GATHER_COMPARISON = 0x8000000,
+};
+
+class Device {
+ public:
+  virtual ~Device();
+  Device(const Device&) = delete;
+  Device& operator=(const Device&) = delete;
+
+  Ref<Buffer> CreateBuffer(const BUFFER_DESC& desc, const SUBRESOURCE_DATA* initialData = nullptr);
+  // initialData: one SUBRESOURCE_DATA per subresource (mip-major within each array slice), or null.
+  Ref<Texture1D> CreateTexture1D(const TEXTURE1D_DESC& desc, const SUBRESOURCE_DATA* initialData = nullptr);
+  Ref<Texture2D> CreateTexture2D(const TEXTURE2D_DESC& desc, const SUBRESOURCE_DATA* initialData = nullptr);
+  Ref<Texture3D> CreateTexture3D(const TEXTURE3D_DESC& desc, const SUBRESOURCE_DATA* initialData = nullptr);
+
+  // desc == nullptr: a view of the whole resource in its own format, as in D3D11.
+  Ref<ShaderResourceView> CreateShaderResourceView(Resource* resource, const SHADER_RESOURCE_VIEW_DESC* desc = nullptr);
+  Ref<RenderTargetView> CreateRenderTargetView(Resource* resource, const RENDER_TARGET_VIEW_DESC* desc = nullptr);
+  Ref<DepthStencilView> CreateDepthStencilView(Resource* resource, const DEPTH_STENCIL_VIEW_DESC* desc = nullptr);
+  Ref<UnorderedAccessView> CreateUnorderedAccessView(Resource* resource, const UNORDERED_ACCESS_VIEW_DESC* desc = nullptr);
+
+  Ref<SamplerState> CreateSamplerState(const SAMPLER_DESC& desc);
+  Ref<RasterizerState> CreateRasterizerState(const RASTERIZER_DESC& desc);
+  Ref<DepthStencilState> CreateDepthStencilState(const DEPTH_STENCIL_DESC& desc);
+  Ref<BlendState> CreateBlendState(const BLEND_DESC& desc);
+
+  // Elements are matched to the vertex shader's input signature by semantic, as in D3D11.
+  Ref<InputLayout> CreateInputLayout(const INPUT_ELEMENT_DESC* elements, uint32_t numElements,
+                                     const ShaderBytecode& vertexShaderBytecode);
+  Ref<VertexShader> CreateVertexShader(const ShaderBytecode& bytecode);
+  Ref<PixelShader> CreatePixelShader(const ShaderBytecode& bytecode);
+  Ref<GeometryShader> CreateGeometryShader(const ShaderBytecode& bytecode);
+  Ref<ComputeShader> CreateComputeShader(const ShaderBytecode& bytecode);
+  // The void*/size overloads take ShaderBytecode::Serialize() blobs.
+  Ref<VertexShader> CreateVertexShader(const void* bytecode, size_t length);
+  Ref<PixelShader> CreatePixelShader(const void* bytecode, size_t length);
+  Ref<ComputeShader> CreateComputeShader(const void* bytecode, size_t length);
+
+  Ref<Query> CreateQuery(const QUERY_DESC& desc);
+
+  DeviceContext* GetImmediateContext() { return context_.get(); }
+
+  // D3D11 CheckFormatSupport / CheckMultisampleQualityLevels.
+  uint32_t CheckFormatSupport(FORMAT format) const;
+  uint32_t CheckMultisampleQualityLevels(FORMAT format, uint32_t sampleCount) const;
+
+  Backend GetBackend() const { return info_.backend; }
+  const DeviceInfo& Info() const { return info_; }
+
+  // Driver validation (Vulkan validation layers, GL debug output) and core errors reported
+  // through Message(). Tests assert the count stays zero.
+  uint64_t ValidationErrorCount() const { return validationErrors_; }
+  std::string LastValidationError() const;
+  void SetMessageCallback(MessageCallback cb) { callback_ = std::move(cb); }
+
+  // For backends and the core: report a message; Error severity counts as a validation error.
+  void Message(MessageSeverity severity, std::string_view text);
+
+ protected:
+  explicit Device(const DeviceDesc& desc);
+  // Backends call this at the end of their constructor, once they can create objects.
+  void InitContext(std::unique_ptr<DeviceContext> context);
+  // Backends call this first in their destructor: unbinds everything and releases the backend
+  // data of objects the application still holds, while the backend can still free them.
+  void ShutdownCore();
+  // Backends call this once the device works: measures the driver's constant depth-bias unit for
+  // D16, D24 and D32F by drawing a biased quad (public API only) and sets info_.depthBiasScale*.
+  void CalibrateDepthBias();
+  DeviceInfo info_;
+
+  // Backend hooks. Arguments are validated and normalised (full view descs, resolved defaults).
+  virtual std::unique_ptr<detail::BackendObject> CreateBufferBackend(Buffer& buffer, const SUBRESOURCE_DATA* init) = 0;
+  virtual std::unique_ptr<detail::BackendObject> CreateTextureBackend(Texture& texture, const SUBRESOURCE_DATA* init) = 0;
+  virtual std::unique_ptr<detail::BackendObject> CreateViewBackend(View& view) = 0;
+  virtual std::unique_ptr<detail::BackendObject> CreateSamplerBackend(SamplerState& sampler) = 0;
+  virtual std::unique_ptr<detail::BackendObject> CreateShaderBackend(Shader& shader) = 0;
+  virtual std::unique_ptr<detail::BackendObject> CreateQueryBackend(Query& query) = 0;
+  virtual uint32_t FormatSupportBackend(FORMAT format) const = 0;
+  virtual uint32_t MaxSampleCountBackend(FORMAT format) const = 0;
+
+ private:
+  friend class Object;
+  template <class T, class... A>
+  Ref<T> Make(A&&... args);
+  template <class T>
+  Ref<T> CreateShaderOfStage(ShaderStage stage, const ShaderBytecode& bytecode, const char* call);
+  void ValidateTextureShape(TextureShape& shape, const char* call, const std::string& object,
+                            const SUBRESOURCE_DATA* init) const;
+
+  std::unique_ptr<DeviceContext> context_;
+  MessageCallback callback_;
+  uint64_t validationErrors_ = 0;
+  std::string lastValidationError_;
+  mutable std::mutex liveMutex_;
+  std::unordered_set<Object*> live_;
+  uint64_t nextUid_ = 1;
+};
+
+template <class T, class... A>
+Ref<T> Device::Make(A&&... args) {
+  return Ref<T>(new T(this, std::forward<A>(args)...));
+}
+
+// Creates a device on the requested backend. Throws sp::Error(DEVICE_CREATION_FAILED) with the
+// reason (no Vulkan driver, EGL cannot create a 4.5 core context, ...).
+Ref<Device> CreateDevice(const DeviceDesc& desc);
+
+}  // namespace sp

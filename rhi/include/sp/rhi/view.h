@@ -1,0 +1,245 @@
+// The four D3D11 view kinds with D3D11's view descriptions.
+#pragma once
+#include <sp/rhi/resource.h>
+
+namespace sp {
+
+enum SRV_DIMENSION : uint32_t {
+  SRV_DIMENSION_UNKNOWN = 0,
+  SRV_DIMENSION_BUFFER = 1,
+  SRV_DIMENSION_TEXTURE1D = 2,
+  SRV_DIMENSION_TEXTURE1DARRAY = 3,
+  SRV_DIMENSION_TEXTURE2D = 4,
+  SRV_DIMENSION_TEXTURE2DARRAY = 5,
+  SRV_DIMENSION_TEXTURE2DMS = 6,
+  SRV_DIMENSION_TEXTURE2DMSARRAY = 7,
+  SRV_DIMENSION_TEXTURE3D = 8,
+  SRV_DIMENSION_TEXTURECUBE = 9,
+  SRV_DIMENSION_TEXTURECUBEARRAY = 10,
+  SRV_DIMENSION_BUFFEREX = 11,
+};
+
+enum RTV_DIMENSION : uint32_t {
+  RTV_DIMENSION_UNKNOWN = 0,
+  RTV_DIMENSION_BUFFER = 1,
+  RTV_DIMENSION_TEXTURE1D = 2,
+  RTV_DIMENSION_TEXTURE1DARRAY = 3,
+  RTV_DIMENSION_TEXTURE2D = 4,
+  RTV_DIMENSION_TEXTURE2DARRAY = 5,
+  RTV_DIMENSION_TEXTURE2DMS = 6,
+  RTV_DIMENSION_TEXTURE2DMSARRAY = 7,
+  RTV_DIMENSION_TEXTURE3D = 8,
+};
+
+enum DSV_DIMENSION : uint32_t {
+  DSV_DIMENSION_UNKNOWN = 0,
+  DSV_DIMENSION_TEXTURE1D = 1,
+  DSV_DIMENSION_TEXTURE1DARRAY = 2,
+  DSV_DIMENSION_TEXTURE2D = 3,
+  DSV_DIMENSION_TEXTURE2DARRAY = 4,
+  DSV_DIMENSION_TEXTURE2DMS = 5,
+  DSV_DIMENSION_TEXTURE2DMSARRAY = 6,
+};
+
+enum UAV_DIMENSION : uint32_t {
+  UAV_DIMENSION_UNKNOWN = 0,
+  UAV_DIMENSION_BUFFER = 1,
+  UAV_DIMENSION_TEXTURE1D = 2,
+  UAV_DIMENSION_TEXTURE1DARRAY = 3,
+  UAV_DIMENSION_TEXTURE2D = 4,
+  UAV_DIMENSION_TEXTURE2DARRAY = 5,
+  UAV_DIMENSION_TEXTURE3D = 8,
+};
+
+enum BUFFEREX_SRV_FLAG : uint32_t { BUFFEREX_SRV_FLAG_RAW = 0x1 };
+enum DSV_FLAG : uint32_t { DSV_READ_ONLY_DEPTH = 0x1, DSV_READ_ONLY_STENCIL = 0x2 };
+enum BUFFER_UAV_FLAG : uint32_t { BUFFER_UAV_FLAG_RAW = 0x1, BUFFER_UAV_FLAG_APPEND = 0x2, BUFFER_UAV_FLAG_COUNTER = 0x4 };
+
+struct BUFFER_SRV { uint32_t FirstElement = 0; uint32_t NumElements = 0; };
+struct BUFFEREX_SRV { uint32_t FirstElement = 0; uint32_t NumElements = 0; uint32_t Flags = 0; };
+struct TEX1D_SRV { uint32_t MostDetailedMip = 0; uint32_t MipLevels = 0; };
+struct TEX1D_ARRAY_SRV { uint32_t MostDetailedMip = 0; uint32_t MipLevels = 0; uint32_t FirstArraySlice = 0; uint32_t ArraySize = 0; };
+struct TEX2D_SRV { uint32_t MostDetailedMip = 0; uint32_t MipLevels = 0; };
+struct TEX2D_ARRAY_SRV { uint32_t MostDetailedMip = 0; uint32_t MipLevels = 0; uint32_t FirstArraySlice = 0; uint32_t ArraySize = 0; };
+struct TEX2DMS_SRV { uint32_t UnusedField_NothingToDefine = 0; };
+struct TEX2DMS_ARRAY_SRV { uint32_t FirstArraySlice = 0; uint32_t ArraySize = 0; };
+struct TEX3D_SRV { uint32_t MostDetailedMip = 0; uint32_t MipLevels = 0; };
+struct TEXCUBE_SRV { uint32_t MostDetailedMip = 0; uint32_t MipLevels = 0; };
+struct TEXCUBE_ARRAY_SRV { uint32_t MostDetailedMip = 0; uint32_t MipLevels = 0; uint32_t First2DArrayFace = 0; uint32_t NumCubes = 0; };
+
+// MipLevels = uint32_t(-1) means "all remaining mips", as in D3D11.
+struct SHADER_RESOURCE_VIEW_DESC {
+  FORMAT Format = FORMAT_UNKNOWN;
+  SRV_DIMENSION ViewDimension = SRV_DIMENSION_UNKNOWN;
+  union {
+    BUFFER_SRV Buffer;
+    TEX1D_SRV Texture1D;
+    TEX1D_ARRAY_SRV Texture1DArray;
+    TEX2D_SRV Texture2D;
+    TEX2D_ARRAY_SRV Texture2DArray;
+    TEX2DMS_SRV Texture2DMS;
+    TEX2DMS_ARRAY_SRV Texture2DMSArray;
+    TEX3D_SRV Texture3D;
+    TEXCUBE_SRV TextureCube;
+    TEXCUBE_ARRAY_SRV TextureCubeArray;
+    BUFFEREX_SRV BufferEx;
+  };
+  SHADER_RESOURCE_VIEW_DESC() : BufferEx{} {}
+};
+
+struct BUFFER_RTV { uint32_t FirstElement = 0; uint32_t NumElements = 0; };
+struct TEX1D_RTV { uint32_t MipSlice = 0; };
+struct TEX1D_ARRAY_RTV { uint32_t MipSlice = 0; uint32_t FirstArraySlice = 0; uint32_t ArraySize = 0; };
+struct TEX2D_RTV { uint32_t MipSlice = 0; };
+struct TEX2D_ARRAY_RTV { uint32_t MipSlice = 0; uint32_t FirstArraySlice = 0; uint32_t ArraySize = 0; };
+struct TEX2DMS_RTV { uint32_t UnusedField_NothingToDefine = 0; };
+struct TEX2DMS_ARRAY_RTV { uint32_t FirstArraySlice = 0; uint32_t ArraySize = 0; };
+struct TEX3D_RTV { uint32_t MipSlice = 0; uint32_t FirstWSlice = 0; uint32_t WSize = 0; };
+
+struct RENDER_TARGET_VIEW_DESC {
+  FORMAT Format = FORMAT_UNKNOWN;
+  RTV_DIMENSION ViewDimension = RTV_DIMENSION_UNKNOWN;
+  union {
+    BUFFER_RTV Buffer;
+    TEX1D_RTV Texture1D;
+    TEX1D_ARRAY_RTV Texture1DArray;
+    TEX2D_RTV Texture2D;
+    TEX2D_ARRAY_RTV Texture2DArray;
+    TEX2DMS_RTV Texture2DMS;
+    TEX2DMS_ARRAY_RTV Texture2DMSArray;
+    TEX3D_RTV Texture3D;
+  };
+  RENDER_TARGET_VIEW_DESC() : Texture3D{} {}
+};
+
+struct TEX1D_DSV { uint32_t MipSlice = 0; };
+struct TEX1D_ARRAY_DSV { uint32_t MipSlice = 0; uint32_t FirstArraySlice = 0; uint32_t ArraySize = 0; };
+struct TEX2D_DSV { uint32_t MipSlice = 0; };
+struct TEX2D_ARRAY_DSV { uint32_t MipSlice = 0; uint32_t FirstArraySlice = 0; uint32_t ArraySize = 0; };
+struct TEX2DMS_DSV { uint32_t UnusedField_NothingToDefine = 0; };
+struct TEX2DMS_ARRAY_DSV { uint32_t FirstArraySlice = 0; uint32_t ArraySize = 0; };
+
+struct DEPTH_STENCIL_VIEW_DESC {
+  FORMAT Format = FORMAT_UNKNOWN;
+  DSV_DIMENSION ViewDimension = DSV_DIMENSION_UNKNOWN;
+  uint32_t Flags = 0;
+  union {
+    TEX1D_DSV Texture1D;
+    TEX1D_ARRAY_DSV Texture1DArray;
+    TEX2D_DSV Texture2D;
+    TEX2D_ARRAY_DSV Texture2DArray;
+    TEX2DMS_DSV Texture2DMS;
+    TEX2DMS_ARRAY_DSV Texture2DMSArray;
+  };
+  DEPTH_STENCIL_VIEW_DESC() : Texture2DArray{} {}
+};
+
+struct BUFFER_UAV { uint32_t FirstElement = 0; uint32_t NumElements = 0; uint32_t Flags = 0; };
+struct TEX1D_UAV { uint32_t MipSlice = 0; };
+struct TEX1D_ARRAY_UAV { uint32_t MipSlice = 0; uint32_t FirstArraySlice = 0; uint32_t ArraySize = 0; };
+struct TEX2D_UAV { uint32_t MipSlice = 0; };
+struct TEX2D_ARRAY_UAV { uint32_t MipSlice = 0; uint32_t FirstArraySlice = 0; uint32_t ArraySize = 0; };
+struct TEX3D_UAV { uint32_t MipSlice = 0; uint32_t FirstWSlice = 0; uint32_t WSize = 0; };
+
+struct UNORDERED_ACCESS_VIEW_DESC {
+  FORMAT Format = FORMAT_UNKNOWN;
+  UAV_DIMENSION ViewDimension = UAV_DIMENSION_UNKNOWN;
+  union {
+    BUFFER_UAV Buffer;
+    TEX1D_UAV Texture1D;
+    TEX1D_ARRAY_UAV Texture1DArray;
+    TEX2D_UAV Texture2D;
+    TEX2D_ARRAY_UAV Texture2DArray;
+    TEX3D_UAV Texture3D;
+  };
+  UNORDERED_ACCESS_VIEW_DESC() : Texture3D{} {}
+};
+
+// What a view covers, in one form for all view kinds. Filled by the core when the view is
+// created; backends and hazard tracking use it instead of the unions.
+struct ViewRange {
+  uint32_t firstMip = 0, mipCount = 1;
+  uint32_t firstSlice = 0, sliceCount = 1;  // array slices (cube faces count as slices); W for 3D
+  uint64_t firstByte = 0, byteCount = 0;    // buffers
+  uint32_t elementStride = 0;               // buffers: bytes per element of the view
+  bool depth = false, stencil = false;      // aspects (depth textures)
+
+  bool overlaps(const ViewRange& o) const;
+};
+
+class View : public Object {
+ public:
+  Resource* GetResource() const { return resource_.get(); }
+  const Ref<Resource>& resource() const { return resource_; }
+  const ViewRange& Range() const { return range_; }
+  FORMAT ViewFormat() const { return format_; }
+
+ protected:
+  friend class Device;
+  View(Device* device, Ref<Resource> resource, const ViewRange& range, FORMAT format)
+      : Object(device), resource_(std::move(resource)), range_(range), format_(format) {}
+  std::string DescribeShape() const override;
+
+ private:
+  Ref<Resource> resource_;
+  ViewRange range_;
+  FORMAT format_;
+};
+
+class ShaderResourceView : public View {
+ public:
+  const SHADER_RESOURCE_VIEW_DESC& GetDesc() const { return desc_; }
+  const char* TypeName() const override { return "ShaderResourceView"; }
+
+ protected:
+  friend class Device;
+  ShaderResourceView(Device* device, Ref<Resource> resource, const SHADER_RESOURCE_VIEW_DESC& desc, const ViewRange& range)
+      : View(device, std::move(resource), range, desc.Format), desc_(desc) {}
+
+ private:
+  SHADER_RESOURCE_VIEW_DESC desc_;
+};
+
+class RenderTargetView : public View {
+ public:
+  const RENDER_TARGET_VIEW_DESC& GetDesc() const { return desc_; }
+  const char* TypeName() const override { return "RenderTargetView"; }
+
+ protected:
+  friend class Device;
+  RenderTargetView(Device* device, Ref<Resource> resource, const RENDER_TARGET_VIEW_DESC& desc, const ViewRange& range)
+      : View(device, std::move(resource), range, desc.Format), desc_(desc) {}
+
+ private:
+  RENDER_TARGET_VIEW_DESC desc_;
+};
+
+class DepthStencilView : public View {
+ public:
+  const DEPTH_STENCIL_VIEW_DESC& GetDesc() const { return desc_; }
+  const char* TypeName() const override { return "DepthStencilView"; }
+
+ protected:
+  friend class Device;
+  DepthStencilView(Device* device, Ref<Resource> resource, const DEPTH_STENCIL_VIEW_DESC& desc, const ViewRange& range)
+      : View(device, std::move(resource), range, desc.Format), desc_(desc) {}
+
+ private:
+  DEPTH_STENCIL_VIEW_DESC desc_;
+};
+
+class UnorderedAccessView : public View {
+ public:
+  const UNORDERED_ACCESS_VIEW_DESC& GetDesc() const { return desc_; }
+  const char* TypeName() const override { return "UnorderedAccessView"; }
+
+ protected:
+  friend class Device;
+  UnorderedAccessView(Device* device, Ref<Resource> resource, const UNORDERED_ACCESS_VIEW_DESC& desc, const ViewRange& range)
+      : View(device, std::move(resource), range, desc.Format), desc_(desc) {}
+
+ private:
+  UNORDERED_ACCESS_VIEW_DESC desc_;
+};
+
+}  // namespace sp

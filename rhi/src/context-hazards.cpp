@@ -1,0 +1,157 @@
+// D3D11's read/write hazard rules for bindings. A subresource may not be bound for input (SRV,
+// vertex/index/constant buffer) while it is bound for output (RTV, writable DSV aspect, UAV):
+//  - binding it for output unbinds it from every input slot;
+//  - binding it for input while it is bound for output binds NULL instead.
+// Both print the warning the D3D11 debug layer prints. Backends can then rely on a subresource
+// never being read and written by the same draw, except through UAVs.
+#include "context-internal.h"
+#include "validate.h"
+
+namespace sp {
+namespace {
+
+// The part of a view that is written when it is bound for output.
+bool WrittenRange(const View* v, ViewRange* out) {
+  *out = v->Range();
+  if (auto* dsv = dynamic_cast<const DepthStencilView*>(v)) {
+    uint32_t f = dsv->GetDesc().Flags;
+    out->depth = !(f & DSV_READ_ONLY_DEPTH);
+    out->stencil = out->stencil && !(f & DSV_READ_ONLY_STENCIL);
+    return out->depth || out->stencil;
+  }
+  return true;
+}
+
+bool Overlaps(const View* output, const Resource* res, const ViewRange& inputRange) {
+  if (output->GetResource() != res) return false;
+  ViewRange w;
+  if (!WrittenRange(output, &w)) return false;
+  return w.overlaps(inputRange);
+}
+
+ViewRange WholeBuffer(const Buffer* b) {
+  ViewRange r;
+  r.firstByte = 0;
+  r.byteCount = b->GetDesc().ByteWidth;
+  return r;
+}
+
+// Calls fn(view, description) for every output binding.
+template <class Fn>
+void ForEachOutput(const PipelineState& s, Fn fn) {
+  for (uint32_t i = 0; i < SIMULTANEOUS_RENDER_TARGET_COUNT; ++i)
+    if (s.renderTargets[i]) fn(s.renderTargets[i].get(), "render target " + std::to_string(i));
+  if (s.depthStencil) fn(s.depthStencil.get(), std::string("depth-stencil target"));
+  for (uint32_t i = 0; i < PS_CS_UAV_REGISTER_COUNT; ++i) {
+    if (s.pixelUavs[i]) fn(s.pixelUavs[i].get(), "pixel shader UAV u" + std::to_string(i));
+    if (s.computeUavs[i]) fn(s.computeUavs[i].get(), "compute shader UAV u" + std::to_string(i));
+  }
+}
+
+}  // namespace
+
+bool ContextHazards::ViewWritesOverlap(const View* a, const View* b) {
+  ViewRange wb;
+  if (!WrittenRange(b, &wb)) return false;
+  return Overlaps(a, b->GetResource(), wb);
+}
+
+ShaderResourceView* ContextHazards::FilterInput(DeviceContext& ctx, ShaderResourceView* srv, const char* call, ShaderStage stage, uint32_t slot) {
+  if (!srv) return nullptr;
+  std::string conflict;
+  ForEachOutput(ctx.state_, [&](const View* out, const std::string& what) {
+    if (conflict.empty() && Overlaps(out, srv->GetResource(), srv->Range())) conflict = what;
+  });
+  if (conflict.empty()) return srv;
+  ctx.device_->Message(MessageSeverity::Warning,
+                       std::string(call) + ": " + Describe(srv->GetResource()) + " is bound as " + conflict +
+                           "; as in D3D11, NULL is bound to " + SlotName(stage, 't', slot) + " instead");
+  return nullptr;
+}
+
+Buffer* ContextHazards::FilterInputBuffer(DeviceContext& ctx, Buffer* buffer, const char* call, const char* what, uint32_t slot) {
+  if (!buffer) return nullptr;
+  std::string conflict;
+  ViewRange whole = WholeBuffer(buffer);
+  ForEachOutput(ctx.state_, [&](const View* out, const std::string& desc) {
+    if (conflict.empty() && Overlaps(out, buffer, whole)) conflict = desc;
+  });
+  if (conflict.empty()) return buffer;
+  ctx.device_->Message(MessageSeverity::Warning, std::string(call) + ": " + Describe(buffer) + " is bound as " + conflict +
+                                                     "; as in D3D11, NULL is bound to " + what + " " + std::to_string(slot) + " instead");
+  return nullptr;
+}
+
+void ContextHazards::UnbindForOutput(DeviceContext& ctx, const View* output, bool outputIsCompute, const char* call) {
+  PipelineState& s = ctx.state_;
+  auto warn = [&](const std::string& where) {
+    ctx.device_->Message(MessageSeverity::Warning, std::string(call) + ": " + Describe(output->GetResource()) +
+                                                       " is now bound for output; as in D3D11 it was unbound from " + where);
+  };
+  const Resource* res = output->GetResource();
+  for (uint32_t st = 0; st < SHADER_STAGE_COUNT; ++st) {
+    StageBindings& b = s.stages[st];
+    for (uint32_t i = 0; i < COMMONSHADER_INPUT_RESOURCE_SLOT_COUNT; ++i) {
+      if (b.shaderResources[i] && Overlaps(output, b.shaderResources[i]->GetResource(), b.shaderResources[i]->Range())) {
+        b.shaderResources[i].reset();
+        ctx.dirty_ |= DIRTY_BINDINGS_VS << st;
+        warn(SlotName(ShaderStage(st), 't', i));
+      }
+    }
+    if (const Buffer* buf = AsBuffer(res)) {
+      for (uint32_t i = 0; i < COMMONSHADER_CONSTANT_BUFFER_API_SLOT_COUNT; ++i) {
+        if (b.constantBuffers[i].get() == buf && Overlaps(output, buf, WholeBuffer(buf))) {
+          b.constantBuffers[i].reset();
+          ctx.dirty_ |= DIRTY_BINDINGS_VS << st;
+          warn(SlotName(ShaderStage(st), 'b', i));
+        }
+      }
+    }
+  }
+  if (const Buffer* buf = AsBuffer(res)) {
+    for (uint32_t i = 0; i < IA_VERTEX_INPUT_RESOURCE_SLOT_COUNT; ++i) {
+      if (s.vertexBuffers[i].get() == buf && Overlaps(output, buf, WholeBuffer(buf))) {
+        s.vertexBuffers[i].reset();
+        ctx.dirty_ |= DIRTY_VERTEX_BUFFERS;
+        warn("vertex buffer slot " + std::to_string(i));
+      }
+    }
+    if (s.indexBuffer.get() == buf && Overlaps(output, buf, WholeBuffer(buf))) {
+      s.indexBuffer.reset();
+      ctx.dirty_ |= DIRTY_INDEX_BUFFER;
+      warn("the index buffer");
+    }
+  }
+  // The graphics pipeline's outputs and the compute UAVs cannot hold the same subresource.
+  if (outputIsCompute) {
+    for (uint32_t i = 0; i < SIMULTANEOUS_RENDER_TARGET_COUNT; ++i) {
+      if (s.renderTargets[i] && ViewWritesOverlap(output, s.renderTargets[i].get())) {
+        s.renderTargets[i].reset();
+        ctx.dirty_ |= DIRTY_RENDER_TARGETS;
+        warn("render target " + std::to_string(i));
+      }
+    }
+    if (s.depthStencil && ViewWritesOverlap(output, s.depthStencil.get())) {
+      s.depthStencil.reset();
+      ctx.dirty_ |= DIRTY_RENDER_TARGETS;
+      warn("the depth-stencil target");
+    }
+    for (uint32_t i = 0; i < PS_CS_UAV_REGISTER_COUNT; ++i) {
+      if (s.pixelUavs[i] && ViewWritesOverlap(output, s.pixelUavs[i].get())) {
+        s.pixelUavs[i].reset();
+        ctx.dirty_ |= DIRTY_PIXEL_UAVS;
+        warn("pixel shader UAV u" + std::to_string(i));
+      }
+    }
+  } else {
+    for (uint32_t i = 0; i < PS_CS_UAV_REGISTER_COUNT; ++i) {
+      if (s.computeUavs[i] && ViewWritesOverlap(output, s.computeUavs[i].get())) {
+        s.computeUavs[i].reset();
+        ctx.dirty_ |= DIRTY_COMPUTE_UAVS;
+        warn("compute shader UAV u" + std::to_string(i));
+      }
+    }
+  }
+}
+
+}  // namespace sp

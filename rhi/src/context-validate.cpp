@@ -1,0 +1,238 @@
+// Draw- and dispatch-time checks: what the D3D11 debug layer reports as errors when a draw would
+// read something unbound or of the wrong kind. Here they throw, so a port fails loudly instead of
+// rendering a silently wrong image.
+#include "context-internal.h"
+#include "validate.h"
+
+namespace sp {
+namespace {
+
+const char* ComponentName(ComponentType t) {
+  switch (t) {
+    case ComponentType::Float: return "float";
+    case ComponentType::UInt: return "uint";
+    case ComponentType::SInt: return "int";
+    default: return "unknown";
+  }
+}
+
+bool FormatReturns(FORMAT f, ComponentType t) {
+  switch (GetFormatInfo(f).kind) {
+    case FormatKind::UInt: return t == ComponentType::UInt;
+    case FormatKind::SInt: return t == ComponentType::SInt;
+    case FormatKind::Float:
+    case FormatKind::UNorm:
+    case FormatKind::SNorm:
+    case FormatKind::UNormSRGB: return t == ComponentType::Float;
+    default: return true;
+  }
+}
+
+const char* DimName(SRV_DIMENSION d) {
+  switch (d) {
+    case SRV_DIMENSION_BUFFER: return "Buffer";
+    case SRV_DIMENSION_TEXTURE1D: return "Texture1D";
+    case SRV_DIMENSION_TEXTURE1DARRAY: return "Texture1DArray";
+    case SRV_DIMENSION_TEXTURE2D: return "Texture2D";
+    case SRV_DIMENSION_TEXTURE2DARRAY: return "Texture2DArray";
+    case SRV_DIMENSION_TEXTURE2DMS: return "Texture2DMS";
+    case SRV_DIMENSION_TEXTURE2DMSARRAY: return "Texture2DMSArray";
+    case SRV_DIMENSION_TEXTURE3D: return "Texture3D";
+    case SRV_DIMENSION_TEXTURECUBE: return "TextureCube";
+    case SRV_DIMENSION_TEXTURECUBEARRAY: return "TextureCubeArray";
+    case SRV_DIMENSION_BUFFEREX: return "raw buffer";
+    default: return "unknown";
+  }
+}
+
+struct Checker {
+  DeviceContext& ctx;
+  const PipelineState& s;
+  const char* call;
+
+  [[noreturn]] void fail(ErrorId id, const Shader* sh, const std::string& detail) const { Fail(id, call, Describe(sh), detail); }
+
+  void checkSrv(const Shader* sh, ShaderStage stage, const ShaderResourceBinding& r, const ShaderResourceView* v) const {
+    std::string slot = SlotName(stage, 't', r.registerIndex) + " ('" + r.name + "')";
+    if (!v) fail(ErrorId::UNBOUND_RESOURCE, sh, "the shader reads " + slot + " but no shader resource view is bound there");
+    const SHADER_RESOURCE_VIEW_DESC& d = v->GetDesc();
+    const Buffer* buf = AsBuffer(v->GetResource());
+    bool structured = buf && (buf->GetDesc().MiscFlags & RESOURCE_MISC_BUFFER_STRUCTURED);
+    bool raw = d.ViewDimension == SRV_DIMENSION_BUFFEREX && (d.BufferEx.Flags & BUFFEREX_SRV_FLAG_RAW);
+    switch (r.type) {
+      case ShaderResourceType::Texture:
+        if (d.ViewDimension != r.dimension)
+          fail(ErrorId::RESOURCE_TYPE_MISMATCH, sh, slot + " is declared " + DimName(r.dimension) + " but " + Describe(v) + " is a " + DimName(d.ViewDimension) + " view");
+        if (!FormatReturns(d.Format, r.returnType))
+          fail(ErrorId::RESOURCE_TYPE_MISMATCH, sh, slot + " returns " + ComponentName(r.returnType) + " but the view's format is " + std::string(FormatName(d.Format)));
+        break;
+      case ShaderResourceType::TypedBuffer:
+        if (!buf || structured || raw) fail(ErrorId::RESOURCE_TYPE_MISMATCH, sh, slot + " is a typed Buffer<> but " + Describe(v) + " is not a typed buffer view");
+        if (!FormatReturns(d.Format, r.returnType))
+          fail(ErrorId::RESOURCE_TYPE_MISMATCH, sh, slot + " returns " + ComponentName(r.returnType) + " but the view's format is " + std::string(FormatName(d.Format)));
+        break;
+      case ShaderResourceType::StructuredBuffer:
+        if (!structured) fail(ErrorId::RESOURCE_TYPE_MISMATCH, sh, slot + " is a StructuredBuffer but " + Describe(v) + " is not a view of a structured buffer");
+        if (r.structureStride && buf->GetDesc().StructureByteStride != r.structureStride)
+          fail(ErrorId::RESOURCE_TYPE_MISMATCH, sh, slot + " has a stride of " + std::to_string(r.structureStride) + " bytes but the buffer's StructureByteStride is " +
+                                                        std::to_string(buf->GetDesc().StructureByteStride));
+        break;
+      case ShaderResourceType::ByteAddressBuffer:
+        if (!raw) fail(ErrorId::RESOURCE_TYPE_MISMATCH, sh, slot + " is a ByteAddressBuffer but " + Describe(v) + " is not a raw view (BUFFEREX_SRV_FLAG_RAW)");
+        break;
+      default:
+        break;
+    }
+  }
+
+  void checkUav(const Shader* sh, ShaderStage stage, const ShaderResourceBinding& r, const UnorderedAccessView* v) const {
+    std::string slot = SlotName(stage, 'u', r.registerIndex) + " ('" + r.name + "')";
+    if (!v)
+      fail(ErrorId::UNBOUND_RESOURCE, sh, "the shader writes " + slot + " but no unordered access view is bound there (" +
+                                              (stage == ShaderStage::Compute ? "CSSetUnorderedAccessViews" : "OMSetRenderTargetsAndUnorderedAccessViews") + ")");
+    const UNORDERED_ACCESS_VIEW_DESC& d = v->GetDesc();
+    const Buffer* buf = AsBuffer(v->GetResource());
+    bool structured = buf && (buf->GetDesc().MiscFlags & RESOURCE_MISC_BUFFER_STRUCTURED);
+    bool raw = buf && (d.Buffer.Flags & BUFFER_UAV_FLAG_RAW);
+    switch (r.type) {
+      case ShaderResourceType::RWTexture:
+        if (buf || uint32_t(d.ViewDimension) != uint32_t(r.dimension))
+          fail(ErrorId::RESOURCE_TYPE_MISMATCH, sh, slot + " is declared RW" + DimName(r.dimension) + " but " + Describe(v) + " does not match");
+        if (!FormatReturns(d.Format, r.returnType))
+          fail(ErrorId::RESOURCE_TYPE_MISMATCH, sh, slot + " holds " + ComponentName(r.returnType) + " but the view's format is " + std::string(FormatName(d.Format)));
+        break;
+      case ShaderResourceType::RWTypedBuffer:
+        if (!buf || structured || raw) fail(ErrorId::RESOURCE_TYPE_MISMATCH, sh, slot + " is an RWBuffer<> but " + Describe(v) + " is not a typed buffer view");
+        break;
+      case ShaderResourceType::RWStructuredBuffer:
+        if (!structured) fail(ErrorId::RESOURCE_TYPE_MISMATCH, sh, slot + " is a structured UAV but " + Describe(v) + " is not a view of a structured buffer");
+        if (r.appendConsume && !(d.Buffer.Flags & (BUFFER_UAV_FLAG_APPEND | BUFFER_UAV_FLAG_COUNTER)))
+          fail(ErrorId::RESOURCE_TYPE_MISMATCH, sh, slot + " uses Append/Consume/IncrementCounter but the view was created without BUFFER_UAV_FLAG_APPEND or _COUNTER");
+        break;
+      case ShaderResourceType::RWByteAddressBuffer:
+        if (!raw) fail(ErrorId::RESOURCE_TYPE_MISMATCH, sh, slot + " is an RWByteAddressBuffer but " + Describe(v) + " is not a raw view (BUFFER_UAV_FLAG_RAW)");
+        break;
+      default:
+        break;
+    }
+  }
+
+  void checkStage(ShaderStage stage) const {
+    const StageBindings& b = s.stage(stage);
+    const Shader* sh = b.shader.get();
+    if (!sh) return;
+    const ShaderReflection& refl = sh->Reflection();
+    for (const CBufferInfo& cb : refl.cbuffers) {
+      const Buffer* buf = b.constantBuffers[cb.registerIndex].get();
+      if (!buf)
+        fail(ErrorId::UNBOUND_RESOURCE, sh, "the shader reads " + SlotName(stage, 'b', cb.registerIndex) + " ('" + cb.name + "', " + std::to_string(cb.size) +
+                                                " bytes) but no constant buffer is bound there");
+      if (buf->GetDesc().ByteWidth < cb.size)
+        ctx.GetDevice()->Message(MessageSeverity::Warning, std::string(call) + ": " + Describe(buf) + " at " + SlotName(stage, 'b', cb.registerIndex) +
+                                                               " is smaller than cbuffer '" + cb.name + "' (" + std::to_string(cb.size) +
+                                                               " bytes); the rest reads as 0 as in D3D11");
+    }
+    for (const ShaderResourceBinding& r : refl.resources) {
+      switch (r.registerClass) {
+        case RegisterClass::ShaderResource:
+          checkSrv(sh, stage, r, b.shaderResources[r.registerIndex].get());
+          break;
+        case RegisterClass::Sampler: {
+          const SamplerState* smp = b.samplers[r.registerIndex].get();
+          std::string slot = SlotName(stage, 's', r.registerIndex) + " ('" + r.name + "')";
+          if (!smp) fail(ErrorId::UNBOUND_RESOURCE, sh, "the shader samples with " + slot + " but no sampler state is bound there");
+          bool cmp = FilterIsComparison(smp->GetDesc().Filter);
+          if (r.type == ShaderResourceType::ComparisonSampler && !cmp)
+            fail(ErrorId::RESOURCE_TYPE_MISMATCH, sh, slot + " is a SamplerComparisonState but " + Describe(smp) + " has no comparison filter");
+          if (r.type == ShaderResourceType::Sampler && cmp)
+            fail(ErrorId::RESOURCE_TYPE_MISMATCH, sh, slot + " is a SamplerState but " + Describe(smp) + " has a comparison filter");
+          break;
+        }
+        case RegisterClass::UnorderedAccess:
+          if (r.type == ShaderResourceType::UavCounter) break;
+          if (stage == ShaderStage::Pixel) checkUav(sh, stage, r, s.pixelUavs[r.registerIndex].get());
+          else if (stage == ShaderStage::Compute) checkUav(sh, stage, r, s.computeUavs[r.registerIndex].get());
+          else fail(ErrorId::NOT_SUPPORTED, sh, "UAVs are only available to pixel and compute shaders in D3D11.0");
+          break;
+        default:
+          break;
+      }
+    }
+  }
+};
+
+}  // namespace
+
+void DrawValidator::CheckDraw(DeviceContext& ctx, const detail::DrawArgs& args, const char* call) {
+  const PipelineState& s = ctx.State();
+  Checker c{ctx, s, call};
+  const Shader* vs = s.stage(ShaderStage::Vertex).shader.get();
+  if (!vs) Fail(ErrorId::DRAW_STATE_INVALID, call, "pipeline", "no vertex shader is bound (VSSetShader)");
+  if (s.topology == PRIMITIVE_TOPOLOGY_UNDEFINED) Fail(ErrorId::DRAW_STATE_INVALID, call, "pipeline", "no primitive topology is set (IASetPrimitiveTopology)");
+  if (s.numViewports == 0) Fail(ErrorId::DRAW_STATE_INVALID, call, "pipeline", "no viewport is set (RSSetViewports)");
+  if (s.rasterizer().ScissorEnable && s.numScissorRects == 0)
+    Fail(ErrorId::DRAW_STATE_INVALID, call, "pipeline", "ScissorEnable is set but no scissor rect is set (RSSetScissorRects)");
+
+  // Input assembler
+  bool needsLayout = false;
+  for (const SignatureElement& in : vs->Reflection().inputs) needsLayout |= !in.systemValue;
+  if (needsLayout) {
+    if (!s.inputLayout) Fail(ErrorId::DRAW_STATE_INVALID, call, Describe(vs), "the vertex shader has vertex inputs but no input layout is set (IASetInputLayout)");
+    for (const SignatureElement& in : vs->Reflection().inputs) {
+      if (in.systemValue) continue;
+      const VertexAttribute* attr = nullptr;
+      for (const VertexAttribute& a : s.inputLayout->Attributes())
+        if (a.location == in.location) attr = &a;
+      if (!attr)
+        Fail(ErrorId::INPUT_LAYOUT_MISMATCH, call, Describe(s.inputLayout.get()),
+             "the bound vertex shader reads " + in.semanticName + std::to_string(in.semanticIndex) + ", which the input layout does not provide (it was made for another shader)");
+      if (!s.vertexBuffers[attr->slot])
+        Fail(ErrorId::DRAW_STATE_INVALID, call, Describe(vs), in.semanticName + std::to_string(in.semanticIndex) + " comes from vertex buffer slot " +
+                                                                  std::to_string(attr->slot) + " but no vertex buffer is bound there");
+    }
+  }
+  bool indexed = args.kind == detail::DrawArgs::DrawIndexed || args.kind == detail::DrawArgs::DrawIndexedInstancedIndirect;
+  if (indexed && !s.indexBuffer) Fail(ErrorId::DRAW_STATE_INVALID, call, "pipeline", "indexed draw without an index buffer (IASetIndexBuffer)");
+
+  // Shader interface: what the pixel shader reads must be written by the vertex shader.
+  const Shader* ps = s.stage(ShaderStage::Pixel).shader.get();
+  if (ps) {
+    for (const SignatureElement& in : ps->Reflection().inputs) {
+      if (in.systemValue) continue;
+      const SignatureElement* out = nullptr;
+      for (const SignatureElement& o : vs->Reflection().outputs)
+        if (o.semanticName == in.semanticName && o.semanticIndex == in.semanticIndex) out = &o;
+      if (!out)
+        Fail(ErrorId::SHADER_INTERFACE_MISMATCH, call, Describe(ps),
+             "the pixel shader reads " + in.semanticName + std::to_string(in.semanticIndex) + ", which " + Describe(vs) + " does not write");
+      if (out->location != in.location)
+        Fail(ErrorId::SHADER_INTERFACE_MISMATCH, call, Describe(ps),
+             in.semanticName + std::to_string(in.semanticIndex) + " is at location " + std::to_string(in.location) + " in the pixel shader but " +
+                 std::to_string(out->location) + " in " + Describe(vs) +
+                 "; declare the vertex output and pixel input with the same members in the same order (a shared struct)");
+    }
+  }
+  c.checkStage(ShaderStage::Vertex);
+  c.checkStage(ShaderStage::Pixel);
+
+  // Render targets written by the pixel shader must match in kind (float/int) when bound.
+  if (ps) {
+    for (const SignatureElement& o : ps->Reflection().outputs) {
+      if (o.semanticName != "SV_TARGET" || o.semanticIndex >= SIMULTANEOUS_RENDER_TARGET_COUNT) continue;
+      const RenderTargetView* rtv = s.renderTargets[o.semanticIndex].get();
+      if (rtv && !FormatReturns(rtv->ViewFormat(), o.componentType))
+        Fail(ErrorId::RESOURCE_TYPE_MISMATCH, call, Describe(ps),
+             "SV_Target" + std::to_string(o.semanticIndex) + " is " + ComponentName(o.componentType) + " but render target " +
+                 std::to_string(o.semanticIndex) + " is " + std::string(FormatName(rtv->ViewFormat())));
+    }
+  }
+}
+
+void DrawValidator::CheckDispatch(DeviceContext& ctx, const char* call) {
+  const PipelineState& s = ctx.State();
+  if (!s.stage(ShaderStage::Compute).shader) Fail(ErrorId::DRAW_STATE_INVALID, call, "pipeline", "no compute shader is bound (CSSetShader)");
+  Checker c{ctx, s, call};
+  c.checkStage(ShaderStage::Compute);
+}
+
+}  // namespace sp

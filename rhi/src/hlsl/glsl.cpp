@@ -1,0 +1,226 @@
+// SPIR-V -> GLSL 4.50 for the OpenGL backend.
+//
+// GL differs from D3D/Vulkan in two ways that matter here:
+//  - textures and samplers are combined: each (texture, sampler) pair a shader uses becomes one
+//    sampler uniform with its own texture unit, and Load/texelFetch get a dummy sampler;
+//  - uniform blocks follow std140, which cannot express every HLSL cbuffer packing (a float3 right
+//    after a float, a float after a float3x3, arrays of structs whose size std140 rounds up).
+//    Such blocks are given std140 offsets here, and the GL backend repacks the D3D-laid-out buffer
+//    into that layout with the copy table computed alongside.
+#include <algorithm>
+#include <spirv_cross/spirv_glsl.hpp>
+
+#include "toolchain.h"
+
+namespace sp::hlsl {
+namespace {
+
+using spirv_cross::SPIRType;
+
+[[noreturn]] void Fail(const std::string& source, const std::string& msg) {
+  throw CompileError("CrossCompileToGlsl", source, {{source, 0, msg}}, msg);
+}
+
+uint32_t AlignUp(uint32_t v, uint32_t a) { return (v + a - 1) / a * a; }
+
+struct Layout {
+  uint32_t size = 0, align = 0;
+};
+
+// Walks a block type, assigning std140 offsets (written back into the compiler's decorations)
+// and recording the byte ranges to copy from the D3D layout.
+class Std140Rewriter {
+ public:
+  Std140Rewriter(spirv_cross::CompilerGLSL& c) : c_(c) {}
+
+  // Returns the std140 layout of struct `typeId`; appends copies for data at srcBase/dstBase.
+  Layout Struct(uint32_t typeId, uint32_t srcBase, uint32_t dstBase, bool record) {
+    const SPIRType& t = c_.get_type(typeId);
+    uint32_t offset = 0, align = 16;
+    for (uint32_t i = 0; i < t.member_types.size(); ++i) {
+      uint32_t srcOff = c_.get_member_decoration(t.self, i, spv::DecorationOffset);
+      bool rowMajor = c_.has_member_decoration(t.self, i, spv::DecorationRowMajor);
+      uint32_t memberAlign = Align(t.member_types[i], rowMajor);
+      offset = AlignUp(offset, memberAlign);
+      uint32_t srcArrayStride = 0;
+      const SPIRType& mt = c_.get_type(t.member_types[i]);
+      if (!mt.array.empty()) srcArrayStride = c_.get_decoration(t.member_types[i], spv::DecorationArrayStride);
+      Layout l = Member(t.member_types[i], rowMajor, srcBase + srcOff, dstBase + offset, srcArrayStride, record);
+      if (rewrite_ && c_.get_member_decoration(t.self, i, spv::DecorationOffset) != offset) {
+        c_.set_member_decoration(t.self, i, spv::DecorationOffset, offset);
+      }
+      offset += l.size;
+      align = std::max(align, memberAlign);
+    }
+    return {AlignUp(offset, 16), align};
+  }
+
+  void SetRewrite(bool r) { rewrite_ = r; }
+  std::vector<GlCopyRange> ranges;
+
+ private:
+  uint32_t Align(uint32_t typeId, bool rowMajor) {
+    const SPIRType& t = c_.get_type(typeId);
+    if (!t.array.empty() || t.basetype == SPIRType::Struct || t.columns > 1) return 16;
+    return t.vecsize == 1 ? 4 : t.vecsize == 2 ? 8 : 16;
+  }
+
+  Layout Member(uint32_t typeId, bool rowMajor, uint32_t src, uint32_t dst, uint32_t srcArrayStride, bool record) {
+    const SPIRType& t = c_.get_type(typeId);
+    if (!t.array.empty()) {
+      uint32_t elemType = t.parent_type;
+      uint32_t count = t.array.back();
+      if (!t.array_size_literal.back()) Fail("cbuffer", "specialization-constant array sizes are not supported in cbuffers");
+      // The element's own std140 size decides the stride (rounded to 16).
+      const SPIRType& et = c_.get_type(elemType);
+      uint32_t elemSrcStride = et.array.empty() ? 0 : c_.get_decoration(elemType, spv::DecorationArrayStride);
+      Layout el = Member(elemType, rowMajor, src, dst, elemSrcStride, false);
+      uint32_t stride = AlignUp(std::max(el.size, 16u), 16);
+      for (uint32_t i = 0; i < count; ++i) Member(elemType, rowMajor, src + i * srcArrayStride, dst + i * stride, elemSrcStride, record);
+      if (rewrite_ && c_.get_decoration(typeId, spv::DecorationArrayStride) != stride) c_.set_decoration(typeId, spv::DecorationArrayStride, stride);
+      return {stride * count, 16};
+    }
+    if (t.basetype == SPIRType::Struct) return Struct(typeId, src, dst, record);
+    if (t.columns > 1) {
+      // MatrixStride is 16 in both layouts; copy vector by vector.
+      uint32_t vectors = rowMajor ? t.vecsize : t.columns;
+      uint32_t comps = rowMajor ? t.columns : t.vecsize;
+      for (uint32_t v = 0; v < vectors; ++v) Copy(src + v * 16, dst + v * 16, comps * 4, record);
+      return {vectors * 16, 16};
+    }
+    Copy(src, dst, t.vecsize * 4, record);
+    return {t.vecsize * 4, t.vecsize == 1 ? 4u : t.vecsize == 2 ? 8u : 16u};
+  }
+
+  void Copy(uint32_t src, uint32_t dst, uint32_t size, bool record) {
+    if (!record) return;
+    if (!ranges.empty()) {
+      GlCopyRange& last = ranges.back();
+      if (last.src + last.size == src && last.dst + last.size == dst) {
+        last.size += size;
+        return;
+      }
+    }
+    ranges.push_back({src, dst, size});
+  }
+
+  spirv_cross::CompilerGLSL& c_;
+  bool rewrite_ = false;
+};
+
+}  // namespace
+
+GlStageBases GlBasesForStage(ShaderStage stage) {
+  switch (stage) {
+    case ShaderStage::Vertex: return {0, 0, 16};
+    case ShaderStage::Pixel: return {16, 14, 32};
+    case ShaderStage::Geometry: return {32, 28, 48};
+    case ShaderStage::Compute: return {0, 0, 16};
+  }
+  return {0, 0, 16};
+}
+
+GlslOutput CrossCompileToGlsl(const std::vector<uint32_t>& spirv, const ShaderReflection& refl, const std::string& sourceName) {
+  GlslOutput out;
+  try {
+    spirv_cross::CompilerGLSL c(spirv);
+    spirv_cross::CompilerGLSL::Options o = c.get_common_options();
+    o.version = 450;
+    o.es = false;
+    o.vulkan_semantics = false;
+    o.separate_shader_objects = true;
+    o.enable_420pack_extension = true;
+    c.set_common_options(o);
+
+    GlStageBases bases = GlBasesForStage(refl.stage);
+    spirv_cross::ShaderResources res = c.get_shader_resources();
+
+    // Uniform blocks: std140 where needed, bindings per stage.
+    for (const auto& ub : res.uniform_buffers) {
+      uint32_t reg = c.get_decoration(ub.id, spv::DecorationBinding) - vkbind::kConstantBuffer;
+      GlBinding b;
+      b.kind = GlBindingKind::UniformBlock;
+      b.glBinding = bases.uniformBlock + reg;
+      b.registerClass = RegisterClass::ConstantBuffer;
+      b.registerIndex = reg;
+      Std140Rewriter rw(c);
+      rw.SetRewrite(false);
+      Layout std140 = rw.Struct(ub.base_type_id, 0, 0, true);
+      // Identity copy table = the D3D layout already is std140.
+      bool identity = std::all_of(rw.ranges.begin(), rw.ranges.end(), [](const GlCopyRange& r) { return r.src == r.dst; });
+      if (!identity) {
+        Std140Rewriter apply(c);
+        apply.SetRewrite(true);
+        apply.Struct(ub.base_type_id, 0, 0, true);
+        b.repack = std::move(apply.ranges);
+        b.glBlockSize = std140.size;
+      }
+      c.set_decoration(ub.id, spv::DecorationBinding, b.glBinding);
+      c.unset_decoration(ub.id, spv::DecorationDescriptorSet);
+      out.bindings.push_back(std::move(b));
+    }
+
+    // Storage blocks: UAV buffers keep their register (D3D shares u# between PS and CS), their
+    // counters sit at kGlUavCounterBase + N, read-only t# buffers get a per-stage range.
+    uint32_t nextStorage = bases.storageBlock;
+    for (const auto& sb : res.storage_buffers) {
+      uint32_t binding = c.get_decoration(sb.id, spv::DecorationBinding);
+      GlBinding b;
+      b.kind = GlBindingKind::StorageBlock;
+      if (binding >= vkbind::kUavCounter) {
+        b.registerClass = RegisterClass::UnorderedAccess;
+        b.registerIndex = binding - vkbind::kUavCounter;
+        b.uavCounter = true;
+        b.glBinding = kGlUavCounterBase + b.registerIndex;
+      } else if (binding >= vkbind::kUnorderedAccess) {
+        b.registerClass = RegisterClass::UnorderedAccess;
+        b.registerIndex = binding - vkbind::kUnorderedAccess;
+        b.glBinding = b.registerIndex;
+      } else {
+        b.registerClass = RegisterClass::ShaderResource;
+        b.registerIndex = binding - vkbind::kShaderResource;
+        if (nextStorage >= bases.storageBlock + 16) Fail(sourceName, "more than 16 structured/byte-address buffers in one stage");
+        b.glBinding = nextStorage++;
+      }
+      c.set_decoration(sb.id, spv::DecorationBinding, b.glBinding);
+      c.unset_decoration(sb.id, spv::DecorationDescriptorSet);
+      out.bindings.push_back(std::move(b));
+    }
+
+    for (const auto& img : res.storage_images) {
+      GlBinding b;
+      b.kind = GlBindingKind::Image;
+      b.registerClass = RegisterClass::UnorderedAccess;
+      b.registerIndex = c.get_decoration(img.id, spv::DecorationBinding) - vkbind::kUnorderedAccess;
+      b.glBinding = b.registerIndex;
+      c.set_decoration(img.id, spv::DecorationBinding, b.glBinding);
+      c.unset_decoration(img.id, spv::DecorationDescriptorSet);
+      out.bindings.push_back(std::move(b));
+    }
+
+    // Combined image-samplers, one texture unit each.
+    c.build_dummy_sampler_for_combined_images();
+    c.build_combined_image_samplers();
+    uint32_t unit = bases.textureUnit;
+    for (const spirv_cross::CombinedImageSampler& cis : c.get_combined_image_samplers()) {
+      GlBinding b;
+      b.kind = GlBindingKind::CombinedSampler;
+      b.registerClass = RegisterClass::ShaderResource;
+      b.registerIndex = c.get_decoration(cis.image_id, spv::DecorationBinding) - vkbind::kShaderResource;
+      uint32_t sb = c.get_decoration(cis.sampler_id, spv::DecorationBinding);
+      bool dummy = !c.has_decoration(cis.sampler_id, spv::DecorationBinding) || sb < vkbind::kSampler;
+      b.samplerRegister = dummy ? -1 : int32_t(sb - vkbind::kSampler);
+      if (unit >= bases.textureUnit + 16) Fail(sourceName, "more than 16 texture/sampler pairs in one stage (GL_MAX_TEXTURE_IMAGE_UNITS minimum)");
+      b.glBinding = unit++;
+      c.set_decoration(cis.combined_id, spv::DecorationBinding, b.glBinding);
+      c.set_name(cis.combined_id, "sp_" + c.get_name(cis.image_id) + (dummy ? std::string("_load") : "_" + c.get_name(cis.sampler_id)));
+      out.bindings.push_back(std::move(b));
+    }
+    out.glsl = c.compile();
+  } catch (const spirv_cross::CompilerError& e) {
+    Fail(sourceName, std::string("SPIRV-Cross: ") + e.what());
+  }
+  return out;
+}
+
+}  // namespace sp::hlsl

@@ -1,0 +1,217 @@
+#include "spirv-edit.h"
+
+#include <cstddef>
+#include <spirv/unified1/spirv.hpp>
+#include <unordered_map>
+
+namespace sp::hlsl {
+namespace {
+
+constexpr size_t kHeaderWords = 5;
+
+// Iterates instructions: fn(opcode, wordCount, pointer to first word).
+template <class Fn>
+void ForEach(std::vector<uint32_t>& spirv, Fn fn) {
+  for (size_t i = kHeaderWords; i < spirv.size();) {
+    uint32_t wc = spirv[i] >> 16;
+    if (wc == 0) break;
+    fn(spv::Op(spirv[i] & 0xffff), wc, &spirv[i]);
+    i += wc;
+  }
+}
+
+template <class Fn>
+void ForEachConst(const std::vector<uint32_t>& spirv, Fn fn) {
+  for (size_t i = kHeaderWords; i < spirv.size();) {
+    uint32_t wc = spirv[i] >> 16;
+    if (wc == 0) break;
+    fn(spv::Op(spirv[i] & 0xffff), wc, &spirv[i]);
+    i += wc;
+  }
+}
+
+// Word index (within the instruction) of the image-operands mask, or 0 when the opcode has none.
+uint32_t ImageOperandsIndex(spv::Op op) {
+  switch (op) {
+    // result type, result, sampled image, coordinate, [mask]
+    case spv::OpImageSampleImplicitLod:
+    case spv::OpImageSampleExplicitLod:
+    case spv::OpImageSampleProjImplicitLod:
+    case spv::OpImageSampleProjExplicitLod:
+    case spv::OpImageFetch:
+    case spv::OpImageRead:
+      return 5;
+    // ... with a Dref or component operand before the mask
+    case spv::OpImageSampleDrefImplicitLod:
+    case spv::OpImageSampleDrefExplicitLod:
+    case spv::OpImageSampleProjDrefImplicitLod:
+    case spv::OpImageSampleProjDrefExplicitLod:
+    case spv::OpImageGather:
+    case spv::OpImageDrefGather:
+      return 6;
+    default:
+      return 0;
+  }
+}
+
+// Number of id operands that follow each image-operand bit (in bit order).
+uint32_t OperandWords(uint32_t bit) {
+  switch (bit) {
+    case spv::ImageOperandsGradMask: return 2;
+    default: return 1;
+  }
+}
+
+// Follows OpLoad / OpAccessChain / OpCopyObject back to the variable an id was loaded from.
+uint32_t RootVariable(const std::unordered_map<uint32_t, const uint32_t*>& defs, uint32_t id) {
+  for (int guard = 0; guard < 16; ++guard) {
+    auto it = defs.find(id);
+    if (it == defs.end()) return 0;
+    const uint32_t* in = it->second;
+    spv::Op op = spv::Op(in[0] & 0xffff);
+    if (op == spv::OpVariable) return id;
+    if (op == spv::OpLoad || op == spv::OpAccessChain || op == spv::OpInBoundsAccessChain || op == spv::OpCopyObject) {
+      id = in[3];
+      continue;
+    }
+    return 0;
+  }
+  return 0;
+}
+
+std::unordered_map<uint32_t, const uint32_t*> ResultDefinitions(const std::vector<uint32_t>& spirv) {
+  std::unordered_map<uint32_t, const uint32_t*> defs;
+  ForEachConst(spirv, [&](spv::Op op, uint32_t wc, const uint32_t* in) {
+    switch (op) {
+      case spv::OpVariable:
+      case spv::OpLoad:
+      case spv::OpAccessChain:
+      case spv::OpInBoundsAccessChain:
+      case spv::OpCopyObject:
+      case spv::OpSampledImage:
+      case spv::OpImage:
+        if (wc >= 3) defs[in[2]] = in;
+        break;
+      default:
+        break;
+    }
+  });
+  return defs;
+}
+
+}  // namespace
+
+void ConstOffsetsFromConstants(std::vector<uint32_t>& spirv) {
+  std::vector<bool> isConst(spirv.size() > 3 ? spirv[3] : 0, false);
+  ForEach(spirv, [&](spv::Op op, uint32_t wc, uint32_t* in) {
+    if ((op == spv::OpConstant || op == spv::OpConstantComposite || op == spv::OpConstantNull) && in[2] < isConst.size())
+      isConst[in[2]] = true;
+  });
+  ForEach(spirv, [&](spv::Op op, uint32_t wc, uint32_t* in) {
+    uint32_t maskIdx = ImageOperandsIndex(op);
+    if (!maskIdx || maskIdx >= wc) return;
+    uint32_t mask = in[maskIdx];
+    if (!(mask & spv::ImageOperandsOffsetMask)) return;
+    uint32_t idx = maskIdx + 1;
+    for (uint32_t bit = 1; bit < spv::ImageOperandsOffsetMask; bit <<= 1)
+      if (mask & bit) idx += OperandWords(bit);
+    if (idx < wc && in[idx] < isConst.size() && isConst[in[idx]])
+      in[maskIdx] = (mask & ~uint32_t(spv::ImageOperandsOffsetMask)) | spv::ImageOperandsConstOffsetMask;
+  });
+}
+
+void RemapCounterBindings(std::vector<uint32_t>& spirv, uint32_t uavBase, uint32_t counterBase) {
+  std::unordered_map<uint32_t, uint32_t> binding;        // variable -> binding
+  std::unordered_map<uint32_t, uint32_t> counterOf;      // counter variable -> buffer variable
+  ForEach(spirv, [&](spv::Op op, uint32_t wc, uint32_t* in) {
+    if (op == spv::OpDecorate && wc >= 4 && in[2] == spv::DecorationBinding) binding[in[1]] = in[3];
+    if (op == spv::OpDecorateId && wc >= 4 && in[2] == spv::DecorationHlslCounterBufferGOOGLE) counterOf[in[3]] = in[1];
+  });
+  ForEach(spirv, [&](spv::Op op, uint32_t wc, uint32_t* in) {
+    if (op != spv::OpDecorate || wc < 4 || in[2] != spv::DecorationBinding) return;
+    auto it = counterOf.find(in[1]);
+    if (it == counterOf.end()) return;
+    uint32_t owner = binding[it->second];
+    if (owner >= uavBase) in[3] = counterBase + (owner - uavBase);
+  });
+}
+
+std::set<uint32_t> ComparisonSamplerVariables(const std::vector<uint32_t>& spirv) {
+  auto defs = ResultDefinitions(spirv);
+  std::set<uint32_t> result;
+  ForEachConst(spirv, [&](spv::Op op, uint32_t wc, const uint32_t* in) {
+    switch (op) {
+      case spv::OpImageSampleDrefImplicitLod:
+      case spv::OpImageSampleDrefExplicitLod:
+      case spv::OpImageSampleProjDrefImplicitLod:
+      case spv::OpImageSampleProjDrefExplicitLod:
+      case spv::OpImageDrefGather: {
+        auto it = defs.find(in[3]);  // the sampled image
+        if (it == defs.end()) return;
+        const uint32_t* si = it->second;
+        if (spv::Op(si[0] & 0xffff) != spv::OpSampledImage) return;
+        if (uint32_t var = RootVariable(defs, si[4])) result.insert(var);
+        break;
+      }
+      default:
+        break;
+    }
+  });
+  return result;
+}
+
+static std::set<uint32_t> ReadImageVariables(const std::vector<uint32_t>& spirv) {
+  auto defs = ResultDefinitions(spirv);
+  std::set<uint32_t> read;
+  ForEachConst(spirv, [&](spv::Op op, uint32_t wc, const uint32_t* in) {
+    if (op == spv::OpImageRead) {
+      if (uint32_t v = RootVariable(defs, in[3])) read.insert(v);
+    } else if (op == spv::OpImageTexelPointer) {
+      if (uint32_t v = RootVariable(defs, in[3])) read.insert(v);
+    }
+  });
+  return read;
+}
+
+void SetFormatOfReadImages(std::vector<uint32_t>& spirv) {
+  std::set<uint32_t> read = ReadImageVariables(spirv);
+  if (read.empty()) return;
+  // variable -> pointer type -> image type
+  std::unordered_map<uint32_t, uint32_t> varType, pointee;
+  std::unordered_map<uint32_t, uint32_t*> imageTypes;
+  std::unordered_map<uint32_t, uint32_t> scalarKind;  // type id -> 0 float, 1 uint, 2 int
+  ForEach(spirv, [&](spv::Op op, uint32_t wc, uint32_t* in) {
+    if (op == spv::OpVariable) varType[in[2]] = in[1];
+    if (op == spv::OpTypePointer) pointee[in[1]] = in[3];
+    if (op == spv::OpTypeArray || op == spv::OpTypeRuntimeArray) pointee[in[1]] = in[2];
+    if (op == spv::OpTypeImage) imageTypes[in[1]] = in;
+    if (op == spv::OpTypeFloat) scalarKind[in[1]] = 0;
+    if (op == spv::OpTypeInt) scalarKind[in[1]] = in[3] ? 2 : 1;
+  });
+  for (uint32_t v : read) {
+    uint32_t t = varType[v];
+    for (int i = 0; i < 4 && !imageTypes.count(t); ++i) t = pointee[t];
+    auto it = imageTypes.find(t);
+    if (it == imageTypes.end()) continue;
+    uint32_t* img = it->second;  // OpTypeImage: result, sampled type, dim, depth, arrayed, ms, sampled, format
+    if (img[8] != spv::ImageFormatUnknown) continue;
+    uint32_t kind = scalarKind[img[2]];
+    img[8] = kind == 0 ? spv::ImageFormatR32f : kind == 1 ? spv::ImageFormatR32ui : spv::ImageFormatR32i;
+  }
+}
+
+std::set<uint32_t> WriteOnlyImageVariables(const std::vector<uint32_t>& spirv) {
+  std::set<uint32_t> read = ReadImageVariables(spirv);
+  auto defs = ResultDefinitions(spirv);
+  std::set<uint32_t> written;
+  ForEachConst(spirv, [&](spv::Op op, uint32_t wc, const uint32_t* in) {
+    if (op == spv::OpImageWrite)
+      if (uint32_t v = RootVariable(defs, in[1])) written.insert(v);
+  });
+  std::set<uint32_t> result;
+  for (uint32_t v : written)
+    if (!read.count(v)) result.insert(v);
+  return result;
+}
+
+}  // namespace sp::hlsl

@@ -1,0 +1,31 @@
+// Small, targeted edits of SPIR-V binaries that spirv-opt does not offer. Each exists because a
+// D3D11 rule or a driver requirement is not met by glslang's output as is.
+#pragma once
+#include <cstdint>
+#include <set>
+#include <vector>
+
+namespace sp::hlsl {
+
+// After loop unrolling and constant propagation, texel offsets of [unroll]ed loops are constants
+// but still use the Offset image operand, which Vulkan allows only on gathers. Turn them into
+// ConstOffset (the operand glslang would have emitted for a literal offset).
+void ConstOffsetsFromConstants(std::vector<uint32_t>& spirv);
+
+// glslang places the hidden counter of an Append/ConsumeStructuredBuffer at the next free binding,
+// which can be another register's. Move each counter to `counterBase + (binding - uavBase)`.
+void RemapCounterBindings(std::vector<uint32_t>& spirv, uint32_t uavBase, uint32_t counterBase);
+
+// Variables (by result id) of samplers that feed a depth-comparison instruction: HLSL's
+// SamplerComparisonState, which SPIR-V does not distinguish by type.
+std::set<uint32_t> ComparisonSamplerVariables(const std::vector<uint32_t>& spirv);
+
+// Storage images are compiled without a format (D3D binds any compatible UAV format to a
+// RWTexture2D<float4>). Images that are read or used atomically need one; D3D11 allows typed UAV
+// loads only from R32_FLOAT/UINT/SINT, so give those R32f/R32ui/R32i.
+void SetFormatOfReadImages(std::vector<uint32_t>& spirv);
+
+// Variables (by result id) of storage images that are only written (no read, no atomics).
+std::set<uint32_t> WriteOnlyImageVariables(const std::vector<uint32_t>& spirv);
+
+}  // namespace sp::hlsl

@@ -1,0 +1,40 @@
+// Internal stages of the HLSL toolchain (see sp/hlsl/compiler.h for the pipeline).
+#pragma once
+#include <sp/hlsl/compiler.h>
+
+#include <string>
+#include <vector>
+
+namespace sp::hlsl {
+
+// Toolchain revision: part of every cache key. Bump it when a stage changes its output.
+inline constexpr const char* kToolchainRevision = "sp-hlsl-7";
+
+// Reflection from SPIR-V that still carries SPV_GOOGLE_hlsl_functionality1 decorations
+// (semantics, counter buffers). Throws CompileError for bindings outside ShadowPort's scheme.
+ShaderReflection Reflect(const std::vector<uint32_t>& spirv, ShaderStage stage, const std::string& entry,
+                         const std::string& sourceName);
+
+struct GlslOutput {
+  std::string glsl;
+  std::vector<GlBinding> bindings;
+};
+
+// GLSL 4.50 for OpenGL from the final SPIR-V, with GL binding points assigned per stage and
+// cbuffers whose D3D packing std140 cannot express rewritten to std140 (and a repack table).
+GlslOutput CrossCompileToGlsl(const std::vector<uint32_t>& spirv, const ShaderReflection& reflection,
+                              const std::string& sourceName);
+
+// GL binding bases per stage: one program pipeline holds VS and PS programs, whose bindings must
+// not collide in GL's per-context binding tables.
+struct GlStageBases {
+  uint32_t textureUnit, uniformBlock, storageBlock;
+};
+GlStageBases GlBasesForStage(ShaderStage stage);
+inline constexpr uint32_t kGlUavCounterBase = 8;  // storage-block binding of uN's counter: 8 + N
+
+// fnv-1a 64 over bytes, for cache keys and include dependencies.
+uint64_t Hash64(const void* data, size_t size, uint64_t seed = 1469598103934665603ull);
+std::string HexHash(uint64_t h);
+
+}  // namespace sp::hlsl

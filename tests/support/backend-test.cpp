@@ -1,0 +1,164 @@
+#include "backend-test.h"
+
+#define STB_IMAGE_WRITE_IMPLEMENTATION
+#include <stb_image_write.h>
+
+#include <algorithm>
+#include <cstdlib>
+
+namespace sp::test {
+
+std::string BackendParamName(const ::testing::TestParamInfo<Backend>& info) {
+  return info.param == Backend::Vulkan ? "Vulkan" : "OpenGL";
+}
+
+void BackendTest::SetUp() {
+  DeviceDesc desc;
+  desc.backend = GetParam();
+  desc.debug = true;
+  desc.messageCallback = [this](MessageSeverity s, std::string_view text) {
+    if (s == MessageSeverity::Error) validationMessages.emplace_back(text);
+  };
+  device_ = CreateDevice(desc);
+}
+
+void BackendTest::TearDown() {
+  if (device_) {
+    device_->GetImmediateContext()->ClearState();
+    device_->GetImmediateContext()->WaitIdle();
+  }
+  device_.reset();
+  if (!expectValidationErrors) {
+    for (const std::string& m : validationMessages) ADD_FAILURE() << "validation error: " << m;
+  }
+}
+
+std::filesystem::path ShaderDir() {
+  if (const char* e = std::getenv("SHADOWPORT_SHADER_DIR"); e && *e) return e;
+  return SHADOWPORT_SHADER_DIR;
+}
+
+std::filesystem::path TestOutputDir() {
+  const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  std::string suite = info ? info->test_suite_name() : "unknown";
+  std::string name = info ? info->name() : "unknown";
+  std::replace(suite.begin(), suite.end(), '/', '_');
+  std::replace(name.begin(), name.end(), '/', '_');
+  std::filesystem::path p = std::filesystem::path(SHADOWPORT_TEST_OUTPUT_DIR) / suite / name;
+  std::filesystem::create_directories(p);
+  return p;
+}
+
+static hlsl::CompileOptions TestOptions(const std::string& target, const std::string& entry, const std::vector<hlsl::Define>& defines) {
+  hlsl::CompileOptions o;
+  o.target = target;
+  o.entryPoint = entry;
+  o.defines = defines;
+  o.includeDirs = {ShaderDir()};
+  o.cacheDir = std::filesystem::path(SHADOWPORT_TEST_OUTPUT_DIR) / "shader-cache";
+  return o;
+}
+
+ShaderBytecode CompileHlsl(const std::string& source, const std::string& target, const std::string& entry, const std::vector<hlsl::Define>& defines) {
+  const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  std::string name = std::string("inline/") + (info ? info->test_suite_name() : "test") + ".hlsl";
+  std::replace(name.begin(), name.end(), '/', '_');
+  return hlsl::CompileSource(source, name, TestOptions(target, entry, defines));
+}
+
+ShaderBytecode CompileShaderFile(const std::string& rel, const std::string& target, const std::string& entry, const std::vector<hlsl::Define>& defines) {
+  return hlsl::CompileFile(ShaderDir() / rel, TestOptions(target, entry, defines));
+}
+
+std::vector<uint8_t> ReadTexture(Device& dev, DeviceContext& ctx, Texture2D* tex, uint32_t sub) {
+  TEXTURE2D_DESC d = tex->GetDesc();
+  uint32_t mip = sub % d.MipLevels;
+  TEXTURE2D_DESC s = d;
+  s.Width = std::max(1u, d.Width >> mip);
+  s.Height = std::max(1u, d.Height >> mip);
+  s.MipLevels = 1;
+  s.ArraySize = 1;
+  s.SampleDesc = {1, 0};
+  s.Usage = USAGE_STAGING;
+  s.BindFlags = 0;
+  s.CPUAccessFlags = CPU_ACCESS_READ;
+  s.MiscFlags = 0;
+  Ref<Texture2D> staging = dev.CreateTexture2D(s);
+  ctx.CopySubresourceRegion(staging.get(), 0, 0, 0, 0, tex, sub, nullptr);
+  MAPPED_SUBRESOURCE m;
+  ctx.Map(staging.get(), 0, MAP_READ, 0, &m);
+  uint32_t rowBytes = s.Width * GetFormatInfo(d.Format).bytesPerElement;
+  std::vector<uint8_t> out(size_t(rowBytes) * s.Height);
+  for (uint32_t y = 0; y < s.Height; ++y) std::memcpy(out.data() + size_t(y) * rowBytes, static_cast<uint8_t*>(m.pData) + size_t(y) * m.RowPitch, rowBytes);
+  ctx.Unmap(staging.get(), 0);
+  return out;
+}
+
+std::vector<uint8_t> ReadBuffer(Device& dev, DeviceContext& ctx, Buffer* buf) {
+  BUFFER_DESC d;
+  d.ByteWidth = buf->GetDesc().ByteWidth;
+  d.Usage = USAGE_STAGING;
+  d.CPUAccessFlags = CPU_ACCESS_READ;
+  Ref<Buffer> staging = dev.CreateBuffer(d);
+  ctx.CopyResource(staging.get(), buf);
+  MAPPED_SUBRESOURCE m;
+  ctx.Map(staging.get(), 0, MAP_READ, 0, &m);
+  std::vector<uint8_t> out(d.ByteWidth);
+  std::memcpy(out.data(), m.pData, d.ByteWidth);
+  ctx.Unmap(staging.get(), 0);
+  return out;
+}
+
+Ref<Buffer> MakeBuffer(Device& dev, uint32_t bind, const void* data, uint32_t size, uint32_t misc, uint32_t stride) {
+  BUFFER_DESC d;
+  d.ByteWidth = size;
+  d.BindFlags = bind;
+  d.MiscFlags = misc;
+  d.StructureByteStride = stride;
+  SUBRESOURCE_DATA init{data, 0, 0};
+  return dev.CreateBuffer(d, data ? &init : nullptr);
+}
+
+Ref<Texture2D> MakeTexture2D(Device& dev, uint32_t w, uint32_t h, FORMAT fmt, uint32_t bind, const void* data, uint32_t mips, uint32_t arraySize,
+                             uint32_t samples, uint32_t misc) {
+  TEXTURE2D_DESC d;
+  d.Width = w;
+  d.Height = h;
+  d.MipLevels = mips;
+  d.ArraySize = arraySize;
+  d.Format = fmt;
+  d.SampleDesc.Count = samples;
+  d.BindFlags = bind;
+  d.MiscFlags = misc;
+  SUBRESOURCE_DATA init{data, w * GetFormatInfo(fmt).bytesPerElement, 0};
+  return dev.CreateTexture2D(d, data ? &init : nullptr);
+}
+
+void WritePng(const std::filesystem::path& path, uint32_t w, uint32_t h, const uint8_t* rgba) {
+  std::filesystem::create_directories(path.parent_path());
+  stbi_write_png(path.string().c_str(), int(w), int(h), 4, rgba, int(w * 4));
+}
+
+size_t CompareImages(const std::string& name, uint32_t w, uint32_t h, const uint8_t* a, const uint8_t* b, int tolerance) {
+  size_t bad = 0;
+  std::vector<uint8_t> heat(size_t(w) * h * 4);
+  for (size_t i = 0; i < size_t(w) * h; ++i) {
+    int diff = 0;
+    for (int c = 0; c < 4; ++c) diff = std::max(diff, std::abs(int(a[i * 4 + c]) - int(b[i * 4 + c])));
+    if (diff > tolerance) ++bad;
+    uint8_t v = uint8_t(std::min(255, diff * 8));
+    heat[i * 4 + 0] = v;
+    heat[i * 4 + 1] = diff > tolerance ? 0 : v;
+    heat[i * 4 + 2] = 0;
+    heat[i * 4 + 3] = 255;
+  }
+  if (bad) {
+    std::filesystem::path dir = TestOutputDir();
+    WritePng(dir / (name + "-a.png"), w, h, a);
+    WritePng(dir / (name + "-b.png"), w, h, b);
+    WritePng(dir / (name + "-diff.png"), w, h, heat.data());
+  }
+  return bad;
+}
+
+}  // namespace sp::test

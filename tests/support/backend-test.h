@@ -1,0 +1,70 @@
+// Fixture for tests that run on both backends. Every test gets a fresh device with Vulkan
+// validation layers / GL debug output on; any validation error or GL error fails the test.
+#pragma once
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <filesystem>
+#include <sp/rhi/rhi.h>
+#include <string>
+#include <vector>
+
+namespace sp::test {
+
+class BackendTest : public ::testing::TestWithParam<Backend> {
+ protected:
+  void SetUp() override;
+  void TearDown() override;
+
+  Device& device() { return *device_; }
+  DeviceContext& ctx() { return *device_->GetImmediateContext(); }
+  Backend backend() const { return GetParam(); }
+
+  // Errors reported by the backend's validation during the test (cleared by TearDown).
+  std::vector<std::string> validationMessages;
+  // Set by tests that provoke driver messages on purpose.
+  bool expectValidationErrors = false;
+
+ private:
+  Ref<Device> device_;
+};
+
+// Name printer so tests read "Vulkan" / "OpenGL" instead of 0 / 1.
+std::string BackendParamName(const ::testing::TestParamInfo<Backend>& info);
+
+#define SP_INSTANTIATE_BACKEND_TESTS(Suite) \
+  INSTANTIATE_TEST_SUITE_P(Backends, Suite, ::testing::Values(::sp::Backend::Vulkan, ::sp::Backend::OpenGL), ::sp::test::BackendParamName)
+
+// Compiles HLSL given inline (cached in the build tree).
+ShaderBytecode CompileHlsl(const std::string& source, const std::string& target, const std::string& entry,
+                           const std::vector<hlsl::Define>& defines = {});
+// Compiles a file from shaders-hlsl/ (path relative to it).
+ShaderBytecode CompileShaderFile(const std::string& relativePath, const std::string& target, const std::string& entry,
+                                 const std::vector<hlsl::Define>& defines = {});
+std::filesystem::path ShaderDir();
+std::filesystem::path TestOutputDir();  // build/test-output/<suite>/<test>, created on demand
+
+// Reads back one subresource of a texture through a staging copy (CopySubresourceRegion + Map
+// READ), as a D3D11 program would. Rows are tightly packed.
+std::vector<uint8_t> ReadTexture(Device& dev, DeviceContext& ctx, Texture2D* tex, uint32_t subresource = 0);
+std::vector<uint8_t> ReadBuffer(Device& dev, DeviceContext& ctx, Buffer* buf);
+template <class T>
+std::vector<T> ReadAs(const std::vector<uint8_t>& bytes) {
+  std::vector<T> v(bytes.size() / sizeof(T));
+  std::memcpy(v.data(), bytes.data(), v.size() * sizeof(T));
+  return v;
+}
+
+// Convenience creators for tests.
+Ref<Buffer> MakeBuffer(Device& dev, uint32_t bind, const void* data, uint32_t size, uint32_t misc = 0, uint32_t stride = 0);
+Ref<Texture2D> MakeTexture2D(Device& dev, uint32_t w, uint32_t h, FORMAT fmt, uint32_t bind, const void* data = nullptr,
+                             uint32_t mips = 1, uint32_t arraySize = 1, uint32_t samples = 1, uint32_t misc = 0);
+
+// Writes an RGBA8 PNG (for diffs and failure artefacts).
+void WritePng(const std::filesystem::path& path, uint32_t w, uint32_t h, const uint8_t* rgba);
+
+// Compares two RGBA8 images; on mismatch writes a, b and a heat map of |a-b| next to each other
+// under TestOutputDir() and returns the number of pixels differing by more than `tolerance`.
+size_t CompareImages(const std::string& name, uint32_t w, uint32_t h, const uint8_t* a, const uint8_t* b, int tolerance = 0);
+
+}  // namespace sp::test
