@@ -78,6 +78,11 @@ void WriteBytecodeFiles(const fs::path& base, const ShaderBytecode& b, const jso
   WriteAtomically(j, js.data(), js.size());  // last: its presence marks a complete entry
 }
 
+void WriteCompiledFiles(const fs::path& base, const ShaderBytecode& b) {
+  if (base.has_parent_path()) fs::create_directories(base.parent_path());
+  WriteBytecodeFiles(base, b, nullptr);
+}
+
 std::optional<ShaderBytecode> CacheLoad(const fs::path& dir, const std::string& key) {
   std::string js, spv, glsl;
   if (!ReadAll(dir / (key + ".json"), &js) || !ReadAll(dir / (key + ".spv"), &spv) || !ReadAll(dir / (key + ".glsl"), &glsl)) return std::nullopt;

@@ -53,6 +53,10 @@ ShaderBytecode CompileFile(const std::filesystem::path& file, const CompileOptio
 // `fileName` is used in messages and as the base for relative #includes.
 ShaderBytecode CompileSource(std::string_view source, const std::string& fileName, const CompileOptions& options);
 
+// Writes base.spv (SPIR-V), base.glsl (GLSL 4.50) and base.json (reflection, GL binding table):
+// what `shadowport hlslc -Fo base` produces.
+void WriteCompiledFiles(const std::filesystem::path& base, const ShaderBytecode& bytecode);
+
 // Parses an fxc-style target ("ps_5_0"); returns false for unknown targets.
 bool ParseTarget(std::string_view target, ShaderStage* stage);
 

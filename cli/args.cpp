@@ -1,0 +1,88 @@
+#include <algorithm>
+#include <filesystem>
+#include <stdexcept>
+
+#define STB_IMAGE_WRITE_IMPLEMENTATION
+#include <stb_image_write.h>
+
+#include "cli.h"
+
+namespace sp::cli {
+
+Args::Args(std::vector<std::string> args, const std::vector<std::string>& flags) {
+  for (size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    if (a.rfind("--", 0) != 0) {
+      positionals_.push_back(a);
+      continue;
+    }
+    std::string name = a.substr(2), value;
+    size_t eq = name.find('=');
+    if (eq != std::string::npos) {
+      value = name.substr(eq + 1);
+      name = name.substr(0, eq);
+    } else if (std::find(flags.begin(), flags.end(), name) == flags.end()) {
+      if (i + 1 >= args.size()) throw std::invalid_argument("option --" + name + " needs a value");
+      value = args[++i];
+    }
+    options_.emplace(name, value);
+  }
+}
+
+bool Args::has(const std::string& name) const { return options_.count(name) > 0; }
+
+std::string Args::get(const std::string& name, const std::string& fallback) const {
+  auto it = options_.find(name);
+  return it == options_.end() ? fallback : it->second;
+}
+
+std::vector<std::string> Args::getAll(const std::string& name) const {
+  std::vector<std::string> v;
+  auto [b, e] = options_.equal_range(name);
+  for (auto it = b; it != e; ++it) v.push_back(it->second);
+  return v;
+}
+
+void Args::expectOnly(const std::vector<std::string>& known) const {
+  for (const auto& [name, value] : options_) {
+    if (std::find(known.begin(), known.end(), name) != known.end()) continue;
+    std::string list;
+    for (const std::string& k : known) list += (list.empty() ? "--" : ", --") + k;
+    throw std::invalid_argument("unknown option --" + name + " (valid: " + list + ")");
+  }
+}
+
+void ParseSize(const std::string& text, uint32_t* w, uint32_t* h) {
+  size_t x = text.find('x');
+  size_t used1 = 0, used2 = 0;
+  long a = 0, b = 0;
+  try {
+    if (x == std::string::npos) throw std::invalid_argument("");
+    a = std::stol(text.substr(0, x), &used1);
+    b = std::stol(text.substr(x + 1), &used2);
+  } catch (const std::exception&) {
+    throw std::invalid_argument("--size '" + text + "' is not WIDTHxHEIGHT (e.g. 1280x720)");
+  }
+  if (used1 != x || used2 != text.size() - x - 1 || a < 1 || b < 1 || a > 16384 || b > 16384)
+    throw std::invalid_argument("--size '" + text + "' must be WIDTHxHEIGHT with both in [1, 16384]");
+  *w = uint32_t(a);
+  *h = uint32_t(b);
+}
+
+std::map<std::string, std::string> ParseParams(const std::vector<std::string>& params) {
+  std::map<std::string, std::string> out;
+  for (const std::string& p : params) {
+    size_t eq = p.find('=');
+    if (eq == std::string::npos || eq == 0) throw std::invalid_argument("--param '" + p + "' is not name=value");
+    out[p.substr(0, eq)] = p.substr(eq + 1);
+  }
+  return out;
+}
+
+void WritePng(const std::string& path, uint32_t w, uint32_t h, const uint8_t* rgba) {
+  std::filesystem::path p(path);
+  if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path());
+  if (!stbi_write_png(path.c_str(), int(w), int(h), 4, rgba, int(w * 4))) throw std::runtime_error("cannot write " + path);
+}
+
+}  // namespace sp::cli

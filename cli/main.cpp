@@ -1,0 +1,45 @@
+// shadowport: render, demo, hlslc (and, as the lab grows, bench, report, conformance).
+#include <cstdio>
+#include <exception>
+#include <sp/rhi/common.h>
+#include <string>
+#include <vector>
+
+#include "cli.h"
+
+namespace {
+
+void Help() {
+  std::printf(
+      "usage: shadowport <command> [options]\n\n"
+      "commands:\n"
+      "  render  --backend vulkan|gl --technique NAME --scene NAME --size WxH --out file.png [--param k=v]... [--validate]\n"
+      "          renders one frame of a scene with a shadow technique\n"
+      "  demo    [--out dir] [--size WxH] [--technique NAME] [--scene NAME] [--param k=v]...\n"
+      "          renders on both backends with validation on, writes the pictures, a diff and summary.md\n"
+      "  hlslc   file.hlsl -T vs_5_0|ps_5_0|cs_5_0 [-E entry] [-D NAME[=VALUE]] [-I dir] [-Fo out]\n"
+      "          compiles HLSL like fxc: writes out.spv, out.glsl and out.json (reflection)\n");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<std::string> args(argv + 1, argv + argc);
+  if (args.empty() || args[0] == "help" || args[0] == "--help" || args[0] == "-h") {
+    Help();
+    return args.empty() ? 2 : 0;
+  }
+  std::string cmd = args[0];
+  std::vector<std::string> rest(args.begin() + 1, args.end());
+  try {
+    if (cmd == "render") return sp::cli::RunRender(sp::cli::Args(rest, {"validate"}));
+    if (cmd == "demo") return sp::cli::RunDemo(sp::cli::Args(rest));
+    if (cmd == "hlslc") return sp::cli::RunHlslc(rest);
+    std::fprintf(stderr, "shadowport: unknown command '%s'\n", cmd.c_str());
+    Help();
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "shadowport %s: error: %s\n", cmd.c_str(), e.what());
+    return 1;
+  }
+}

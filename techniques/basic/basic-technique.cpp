@@ -1,0 +1,121 @@
+// The basic technique: one directional shadow map fitted to the whole scene (the naive fit),
+// rendered depth-only into R32_TYPELESS with D3D11 rasterizer depth bias, sampled with the 2x2
+// hardware comparison filter. The reference point every other technique is measured against.
+#include <glm/ext/matrix_clip_space.hpp>
+#include <glm/ext/matrix_transform.hpp>
+
+#include "technique.h"
+
+namespace sp::tech {
+namespace {
+
+class BasicTechnique final : public Technique {
+ public:
+  std::string Name() const override { return "basic"; }
+
+  std::vector<ParamSpec> Params() const override {
+    return {
+        {ParamSpec::Int, "resolution", "shadow map width and height in texels", "2048", 16, 16384, {}},
+        {ParamSpec::Int, "depth_bias", "D3D11 DepthBias (units of the depth format)", "200", -1e7, 1e7, {}},
+        {ParamSpec::Float, "slope_bias", "D3D11 SlopeScaledDepthBias", "2.0", -100, 100, {}},
+        {ParamSpec::Float, "bias_clamp", "D3D11 DepthBiasClamp (0 = none)", "0", -1, 1, {}},
+    };
+  }
+
+  void Configure(Device& device, const ParamValues& p) override {
+    resolution_ = uint32_t(p.getInt("resolution"));
+    TEXTURE2D_DESC td;
+    td.Width = td.Height = resolution_;
+    td.Format = FORMAT_R32_TYPELESS;
+    td.BindFlags = BIND_DEPTH_STENCIL | BIND_SHADER_RESOURCE;
+    map_ = device.CreateTexture2D(td);
+    map_->SetDebugName("basic shadow map");
+    DEPTH_STENCIL_VIEW_DESC dd;
+    dd.Format = FORMAT_D32_FLOAT;
+    dd.ViewDimension = DSV_DIMENSION_TEXTURE2D;
+    dsv_ = device.CreateDepthStencilView(map_.get(), &dd);
+    SHADER_RESOURCE_VIEW_DESC sd;
+    sd.Format = FORMAT_R32_FLOAT;
+    sd.ViewDimension = SRV_DIMENSION_TEXTURE2D;
+    sd.Texture2D = {0, 1};
+    srv_ = device.CreateShaderResourceView(map_.get(), &sd);
+
+    RASTERIZER_DESC rd;
+    rd.DepthBias = p.getInt("depth_bias");
+    rd.SlopeScaledDepthBias = p.getFloat("slope_bias");
+    rd.DepthBiasClamp = p.getFloat("bias_clamp");
+    // Casters between the light and the fitted near plane still cast: pancake them onto it.
+    rd.DepthClipEnable = false;
+    rasterizer_ = device.CreateRasterizerState(rd);
+
+    SAMPLER_DESC smp;
+    smp.Filter = FILTER_COMPARISON_MIN_MAG_LINEAR_MIP_POINT;
+    smp.AddressU = smp.AddressV = smp.AddressW = TEXTURE_ADDRESS_BORDER;
+    smp.ComparisonFunc = COMPARISON_LESS_EQUAL;
+    for (float& c : smp.BorderColor) c = 1.0f;  // outside the map: lit
+    sampler_ = device.CreateSamplerState(smp);
+
+    BUFFER_DESC cb;
+    cb.ByteWidth = sizeof(glm::mat4);
+    cb.BindFlags = BIND_CONSTANT_BUFFER;
+    constants_ = device.CreateBuffer(cb);
+    constants_->SetDebugName("BasicShadow constants");
+  }
+
+  void RenderShadows(DeviceContext& ctx, SceneDrawer& drawer, const FrameInputs& frame) override {
+    lightViewProj_ = FitToScene(frame.scene->bounds, frame.light.direction);
+    ctx.UpdateSubresource(constants_.get(), 0, nullptr, &lightViewProj_, 0, 0);
+
+    // The map is read by the previous frame's lit pass; unbind it before writing, as a D3D11
+    // program does (the runtime would do it anyway, with a warning).
+    ShaderResourceView* none = nullptr;
+    ctx.PSSetShaderResources(0, 1, &none);
+    ctx.OMSetRenderTargets(0, nullptr, dsv_.get());
+    ctx.ClearDepthStencilView(dsv_.get(), CLEAR_DEPTH, 1.0f, 0);
+    VIEWPORT vp{0, 0, float(resolution_), float(resolution_), 0, 1};
+    ctx.RSSetViewports(1, &vp);
+    ctx.RSSetState(rasterizer_.get());
+    ctx.OMSetDepthStencilState(nullptr, 0);
+    trianglesSubmitted_ = drawer.DrawDepth(ctx, lightViewProj_);
+  }
+
+  std::string LightingInclude() const override { return "basic/shadow.hlsli"; }
+
+  void BindLighting(DeviceContext& ctx) override {
+    ctx.PSSetConstantBuffers(2, {constants_.get()});
+    ctx.PSSetShaderResources(0, {srv_.get()});
+    ctx.PSSetSamplers(0, {sampler_.get()});
+  }
+
+  ShadowStats Stats() const override { return {uint64_t(resolution_) * resolution_ * 4, trianglesSubmitted_}; }
+
+ private:
+  // An orthographic light frustum around the scene's bounding box.
+  static glm::mat4 FitToScene(const scene::Bounds& bounds, const glm::vec3& direction) {
+    glm::vec3 dir = glm::normalize(direction);
+    glm::vec3 center = bounds.center();
+    float radius = glm::length(bounds.extent()) * 0.5f;
+    glm::vec3 up = std::abs(dir.y) > 0.99f ? glm::vec3(0, 0, 1) : glm::vec3(0, 1, 0);
+    glm::mat4 view = glm::lookAtRH(center - dir * radius, center, up);
+    scene::Bounds ls = bounds.transformed(view);
+    // Right-handed view space looks down -z: near = -max.z, far = -min.z.
+    glm::mat4 proj = glm::orthoRH_ZO(ls.min.x, ls.max.x, ls.min.y, ls.max.y, -ls.max.z, -ls.min.z);
+    return proj * view;
+  }
+
+  uint32_t resolution_ = 0;
+  Ref<Texture2D> map_;
+  Ref<DepthStencilView> dsv_;
+  Ref<ShaderResourceView> srv_;
+  Ref<RasterizerState> rasterizer_;
+  Ref<SamplerState> sampler_;
+  Ref<Buffer> constants_;
+  glm::mat4 lightViewProj_{1.0f};
+  uint64_t trianglesSubmitted_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<Technique> MakeBasicTechnique() { return std::make_unique<BasicTechnique>(); }
+
+}  // namespace sp::tech

@@ -1,0 +1,36 @@
+// The technique registry: adding a technique is one line here.
+#include <functional>
+#include <stdexcept>
+
+#include "technique.h"
+
+namespace sp::tech {
+
+std::unique_ptr<Technique> MakeBasicTechnique();
+
+namespace {
+struct Entry {
+  const char* name;
+  std::unique_ptr<Technique> (*make)();
+};
+
+const Entry kTechniques[] = {
+    {"basic", MakeBasicTechnique},
+};
+}  // namespace
+
+std::vector<std::string> TechniqueNames() {
+  std::vector<std::string> names;
+  for (const Entry& e : kTechniques) names.push_back(e.name);
+  return names;
+}
+
+std::unique_ptr<Technique> CreateTechnique(const std::string& name) {
+  for (const Entry& e : kTechniques)
+    if (name == e.name) return e.make();
+  std::string list;
+  for (const Entry& e : kTechniques) list += (list.empty() ? "" : ", ") + std::string(e.name);
+  throw std::invalid_argument("unknown technique '" + name + "' (available: " + list + ")");
+}
+
+}  // namespace sp::tech

@@ -1,0 +1,117 @@
+#include <cstdlib>
+#include <cstring>
+
+#include "technique.h"
+
+namespace sp::tech {
+
+namespace {
+
+// Constant buffer layouts; must match shaders-hlsl/common/frame.hlsli (D3D packing).
+struct FrameConstants {
+  glm::mat4 viewProj;
+  glm::vec3 cameraPos;
+  float ambient;
+  glm::vec3 toLight;
+  float frameTime;
+  glm::vec3 lightColor;
+  float pad;
+};
+static_assert(sizeof(FrameConstants) == 112);
+
+struct ObjectConstants {
+  glm::mat4 world;
+  glm::vec3 albedo;
+  float pad;
+};
+static_assert(sizeof(ObjectConstants) == 80);
+
+Ref<Buffer> DynamicConstants(Device& device, uint32_t size, const char* name) {
+  BUFFER_DESC d;
+  d.ByteWidth = size;
+  d.Usage = USAGE_DYNAMIC;
+  d.BindFlags = BIND_CONSTANT_BUFFER;
+  d.CPUAccessFlags = CPU_ACCESS_WRITE;
+  Ref<Buffer> b = device.CreateBuffer(d);
+  b->SetDebugName(name);
+  return b;
+}
+
+template <class T>
+void Upload(DeviceContext& ctx, Buffer* b, const T& value) {
+  MAPPED_SUBRESOURCE m;
+  ctx.Map(b, 0, MAP_WRITE_DISCARD, 0, &m);
+  std::memcpy(m.pData, &value, sizeof(T));
+  ctx.Unmap(b, 0);
+}
+
+}  // namespace
+
+std::filesystem::path ShaderDirectory() {
+  if (const char* e = std::getenv("SHADOWPORT_SHADER_DIR"); e && *e) return e;
+  return SHADOWPORT_SHADER_DIR;
+}
+
+ShaderBytecode CompileTechniqueShader(const std::string& rel, const std::string& target, const std::string& entry,
+                                      const std::vector<hlsl::Define>& defines) {
+  hlsl::CompileOptions o;
+  o.target = target;
+  o.entryPoint = entry;
+  o.defines = defines;
+  o.includeDirs = {ShaderDirectory()};
+  return hlsl::CompileFile(ShaderDirectory() / rel, o);
+}
+
+SceneDrawer::SceneDrawer(Device& device, const scene::GpuScene& gpu) : gpu_(gpu) {
+  frame_ = DynamicConstants(device, sizeof(FrameConstants), "Frame constants");
+  object_ = DynamicConstants(device, sizeof(ObjectConstants), "Object constants");
+  ShaderBytecode vs = CompileTechniqueShader("common/depth-only.hlsl", "vs_5_0", "VSMain");
+  depthVs_ = device.CreateVertexShader(vs);
+  uint32_t n;
+  const INPUT_ELEMENT_DESC* el = scene::GpuScene::InputElements(&n);
+  depthLayout_ = device.CreateInputLayout(el, n, vs);
+}
+
+void SceneDrawer::SetFrame(DeviceContext& ctx, const glm::mat4& viewProj, const FrameInputs* lighting) {
+  FrameConstants f{};
+  f.viewProj = viewProj;
+  if (lighting) {
+    f.cameraPos = lighting->camera.position;
+    f.ambient = lighting->light.ambient;
+    f.toLight = lighting->light.towardsLight();
+    f.lightColor = lighting->light.color;
+  }
+  Upload(ctx, frame_.get(), f);
+}
+
+void SceneDrawer::SetObject(DeviceContext& ctx, uint32_t instance) {
+  const scene::Instance& inst = gpu_.scene().instances[instance];
+  ObjectConstants o{};
+  o.world = inst.transform;
+  o.albedo = inst.albedo;
+  Upload(ctx, object_.get(), o);
+}
+
+void SceneDrawer::BindConstants(DeviceContext& ctx, ShaderStage stage) {
+  Buffer* cbs[] = {frame_.get(), object_.get()};
+  if (stage == ShaderStage::Vertex) ctx.VSSetConstantBuffers(0, 2, cbs);
+  if (stage == ShaderStage::Pixel) ctx.PSSetConstantBuffers(0, 2, cbs);
+}
+
+uint64_t SceneDrawer::DrawDepth(DeviceContext& ctx, const glm::mat4& viewProj) {
+  SetFrame(ctx, viewProj, nullptr);
+  gpu_.BindGeometry(ctx);
+  ctx.IASetInputLayout(depthLayout_.get());
+  ctx.VSSetShader(depthVs_.get());
+  ctx.PSSetShader(nullptr);
+  BindConstants(ctx, ShaderStage::Vertex);
+  uint64_t triangles = 0;
+  for (const scene::DrawItem& d : gpu_.draws()) {
+    SetObject(ctx, d.instance);
+    ctx.DrawIndexed(d.indexCount, d.firstIndex, d.baseVertex);
+    triangles += d.indexCount / 3;
+  }
+  return triangles;
+}
+
+}  // namespace sp::tech

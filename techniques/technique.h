@@ -1,0 +1,110 @@
+// The interface every shadow technique implements. A technique:
+//  - declares its parameters (names, ranges, defaults) so `--param k=v` is validated for it;
+//  - records its shadow passes for a frame (scene, camera, light given);
+//  - provides the lighting side: an HLSL include defining ShadowVisibility() and the resources it
+//    reads, bound into the registers reserved for techniques (b2-b5, t0-t15, s0-s3).
+// Adding a technique = a folder in techniques/, its HLSL in shaders-hlsl/, one registry line.
+#pragma once
+#include <glm/glm.hpp>
+#include <map>
+#include <memory>
+#include <sp/rhi/rhi.h>
+#include <string>
+#include <vector>
+
+#include "gpu-scene.h"
+
+namespace sp::tech {
+
+// --- Parameters
+
+struct ParamSpec {
+  enum Kind { Int, Float, Choice } kind = Int;
+  std::string name;
+  std::string help;
+  std::string defaultValue;
+  double min = 0, max = 0;             // Int and Float
+  std::vector<std::string> choices;    // Choice
+};
+
+// Parsed, validated parameter values (every declared parameter present, defaults filled in).
+class ParamValues {
+ public:
+  int getInt(const std::string& name) const;
+  float getFloat(const std::string& name) const;
+  const std::string& getChoice(const std::string& name) const;
+  const std::map<std::string, std::string>& all() const { return values_; }
+
+  // Validates `given` (name -> text) against `specs`; throws std::invalid_argument naming the
+  // parameter and listing the valid names or values.
+  static ParamValues Parse(const std::string& technique, const std::vector<ParamSpec>& specs,
+                           const std::map<std::string, std::string>& given);
+
+ private:
+  std::map<std::string, std::string> values_;
+};
+
+// --- Per-frame context
+
+// Shaders compiled for techniques: the same options everywhere (shaders-hlsl/ include path, cache).
+ShaderBytecode CompileTechniqueShader(const std::string& relativePath, const std::string& target, const std::string& entry,
+                                      const std::vector<hlsl::Define>& defines = {});
+std::filesystem::path ShaderDirectory();
+
+struct FrameInputs {
+  const scene::Scene* scene = nullptr;
+  scene::Camera camera;
+  scene::DirectionalLight light;
+  uint32_t width = 0, height = 0;  // of the lit pass
+  glm::mat4 cameraView{1.0f}, cameraProj{1.0f};
+};
+
+// Draws the scene's geometry from a given view-projection with the depth-only shader (what every
+// shadow pass does); owned by the renderer, offered to techniques.
+class SceneDrawer {
+ public:
+  SceneDrawer(Device& device, const scene::GpuScene& gpu);
+  // Binds the depth-only pipeline and draws every instance; returns triangles submitted. The
+  // caller has set render targets, viewport and rasterizer state.
+  uint64_t DrawDepth(DeviceContext& ctx, const glm::mat4& viewProj);
+  // Writes Frame (b0) for a pass and Object (b1) per instance; used by the lit pass too.
+  void SetFrame(DeviceContext& ctx, const glm::mat4& viewProj, const FrameInputs* lighting);
+  void SetObject(DeviceContext& ctx, uint32_t instance);
+  void BindConstants(DeviceContext& ctx, ShaderStage stage);
+  const scene::GpuScene& gpu() const { return gpu_; }
+
+ private:
+  const scene::GpuScene& gpu_;
+  Ref<Buffer> frame_, object_;
+  Ref<VertexShader> depthVs_;
+  Ref<InputLayout> depthLayout_;
+};
+
+struct ShadowStats {
+  uint64_t memoryBytes = 0;        // shadow resources
+  uint64_t trianglesSubmitted = 0; // in shadow passes, last frame
+};
+
+class Technique {
+ public:
+  virtual ~Technique() = default;
+  virtual std::string Name() const = 0;
+  virtual std::vector<ParamSpec> Params() const = 0;
+  // Called once with validated parameters, before the first frame.
+  virtual void Configure(Device& device, const ParamValues& params) = 0;
+  // Records the shadow passes of one frame. Leaves render targets in any state.
+  virtual void RenderShadows(DeviceContext& ctx, SceneDrawer& drawer, const FrameInputs& frame) = 0;
+  // The lighting include (relative to shaders-hlsl/) and its defines.
+  virtual std::string LightingInclude() const = 0;
+  virtual std::vector<hlsl::Define> LightingDefines() const { return {}; }
+  // Binds what ShadowVisibility() reads, into PS registers b2-b5, t0-t15, s0-s3.
+  virtual void BindLighting(DeviceContext& ctx) = 0;
+  virtual ShadowStats Stats() const = 0;
+};
+
+// --- Registry (techniques/registry.cpp: one line per technique)
+
+std::unique_ptr<Technique> CreateTechnique(const std::string& name);  // throws std::invalid_argument
+std::vector<std::string> TechniqueNames();
+
+}  // namespace sp::tech
