@@ -2,6 +2,7 @@
 // meshes with positions and normals, instances with transforms and world bounds, a camera and a
 // light. Right-handed, +y up, as glTF; clip-space depth in [0, 1] as D3D.
 #pragma once
+#include <filesystem>
 #include <glm/glm.hpp>
 #include <string>
 #include <vector>
@@ -70,12 +71,43 @@ struct DirectionalLight {
   glm::vec3 towardsLight() const { return -glm::normalize(direction); }
 };
 
+// An omni light for point-light shadow techniques (cube or dual-paraboloid maps). The lit pass of
+// the renderer uses the directional light only; scenes whose point is omni shadows (the
+// "point-light-room") make their directional light dim and put the lighting here.
+struct PointLight {
+  glm::vec3 position{0.0f};
+  glm::vec3 color{1.0f};  // linear intensity at the light, before attenuation
+  float range = 10.0f;    // distance where the light's contribution reaches zero: the shadow far plane
+};
+
+// A camera position and look-at point at one time of a path.
+struct CameraKey {
+  float time = 0.0f;  // in [0, 1], increasing along the path; the first is 0 and the last 1
+  glm::vec3 position{0.0f};
+  glm::vec3 target{0.0f, 0.0f, -1.0f};
+};
+
+// A deterministic camera motion parameterised by t in [0, 1], for temporal measurements: position
+// and target follow Catmull-Rom splines through the keys (C1, passing through every key, straight
+// lines for two keys), so sampling at any frame rate gives continuous motion.
+struct CameraPath {
+  std::string name;
+  Camera lens;  // fovY, nearZ, farZ and up of every frame; its position and target are unused
+  std::vector<CameraKey> keys;
+
+  Camera at(double t) const;  // t is clamped to [0, 1]
+};
+
 struct Scene {
   std::string name;
   std::vector<Mesh> meshes;
   std::vector<Instance> instances;
   Camera camera;
   DirectionalLight light;
+  std::vector<PointLight> pointLights;  // empty unless the scene is about omni shadows
+  // Every built-in scene has "slow-pan", "rotate" and "dolly" (see StandardCameraPaths), starting
+  // at `camera`, plus paths of its own; LoadScene gives glTF scenes the three standard ones.
+  std::vector<CameraPath> cameraPaths;
   Bounds bounds;  // world space, filled by finalize()
 
   uint32_t addMesh(Mesh mesh);
@@ -83,11 +115,45 @@ struct Scene {
   // Computes mesh and world bounds; call after building.
   void finalize();
   size_t triangleCount() const;
+  // Throws std::invalid_argument listing the scene's paths for an unknown name.
+  const CameraPath& cameraPath(const std::string& name) const;
 };
 
-// Built-in procedural scenes. Throws std::invalid_argument listing the names for unknown ones.
+struct SceneOptions {
+  // Instanced triangles wanted (Scene::triangleCount()); 0 = the scene's natural size. Built-in
+  // scenes land within +-30% of targets from 1e4 to 2.5e6 (more instances and finer tessellation;
+  // meshes are shared between instances, so memory grows much more slowly than the count).
+  uint64_t targetTriangles = 0;
+};
+
+// Built-in procedural scenes, deterministic. Throws std::invalid_argument listing the names for
+// unknown ones, and for targets above kMaxTargetTriangles.
 Scene MakeBuiltinScene(const std::string& name);
+Scene MakeBuiltinScene(const std::string& name, const SceneOptions& options);
 std::vector<std::string> BuiltinSceneNames();
+constexpr uint64_t kMaxTargetTriangles = 50'000'000;
+
+// "slow-pan": a sideways move of 1/8 of a shadow texel per 1/60 of the path, the texel being that
+// of a 2048^2 map fitted to the scene's bounding sphere (what the basic technique renders), so the
+// lab's temporal metric sees shadow instability rather than camera motion; "rotate": a 20 degree
+// yaw to the left about the camera position; "dolly": forward along the view by a fifth of the
+// distance to the target. All start at `camera` and keep its lens.
+std::vector<CameraPath> StandardCameraPaths(const Camera& camera, const Bounds& bounds);
+// The scene's own paths, or the standard ones where it has none.
+std::vector<CameraPath> CameraPathsFor(const Scene& scene);
+
+// A glTF 2.0 file (.gltf + .bin or .glb). Throws std::runtime_error naming the file and the
+// offending element for anything malformed.
+Scene LoadGltf(const std::filesystem::path& path);
+
+// A built-in scene name, a scene of ../shared/scenes by folder name (ShadowColumns, TankScene,
+// FlightHelmet), or a path to a .gltf/.glb file.
+Scene LoadScene(const std::string& nameOrPath);
+// As above; a non-zero options.targetTriangles is only valid for built-in scenes (the others have
+// a fixed size) and throws std::invalid_argument for the rest.
+Scene LoadScene(const std::string& nameOrPath, const SceneOptions& options);
+std::filesystem::path SharedScenesDir();  // $SHADOWPORT_SCENES_DIR, else ../shared/scenes of the source tree
+std::vector<std::string> SharedSceneNames();
 
 // Primitive meshes (unit sized, centred at the origin unless stated).
 Mesh MakeBox();                                        // [-0.5, 0.5]^3

@@ -1,0 +1,225 @@
+// glTF 2.0 (.gltf + .bin, .glb) into the scene model with tinygltf. Every accessor is
+// bounds-checked here, so a malformed file gives an error naming the file and the element, never
+// an out-of-range read.
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <glm/ext/matrix_transform.hpp>
+#include <stdexcept>
+#include <tiny_gltf.h>
+
+#include "scene.h"
+
+namespace sp::scene {
+namespace {
+
+class GltfError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct Reader {
+  const tinygltf::Model& model;
+  std::string file;
+
+  [[noreturn]] void fail(const std::string& what) const { throw GltfError(file + ": " + what); }
+
+  // Raw bytes of accessor `index`: pointer to the first element, element stride and count.
+  const uint8_t* access(int index, const std::string& what, int type, std::initializer_list<int> componentTypes, size_t* stride,
+                        size_t* count) const {
+    if (index < 0 || size_t(index) >= model.accessors.size()) fail(what + " refers to accessor " + std::to_string(index) + ", which does not exist");
+    const tinygltf::Accessor& a = model.accessors[index];
+    std::string name = what + " (accessor " + std::to_string(index) + ")";
+    if (a.sparse.isSparse) fail(name + " is sparse, which is not supported");
+    if (a.type != type) fail(name + " has the wrong type (" + std::to_string(a.type) + ")");
+    bool typeOk = false;
+    for (int c : componentTypes) typeOk |= a.componentType == c;
+    if (!typeOk) fail(name + " has an unsupported component type " + std::to_string(a.componentType));
+    if (a.bufferView < 0 || size_t(a.bufferView) >= model.bufferViews.size()) fail(name + " has no valid bufferView");
+    const tinygltf::BufferView& v = model.bufferViews[a.bufferView];
+    if (v.buffer < 0 || size_t(v.buffer) >= model.buffers.size()) fail(name + ": bufferView " + std::to_string(a.bufferView) + " has no valid buffer");
+    const tinygltf::Buffer& b = model.buffers[v.buffer];
+    size_t elemSize = size_t(tinygltf::GetComponentSizeInBytes(a.componentType)) * size_t(tinygltf::GetNumComponentsInType(a.type));
+    size_t s = v.byteStride ? v.byteStride : elemSize;
+    if (s < elemSize) fail(name + ": byteStride " + std::to_string(s) + " is smaller than an element");
+    size_t start = v.byteOffset + a.byteOffset;
+    size_t end = a.count ? start + s * (a.count - 1) + elemSize : start;
+    if (v.byteOffset + v.byteLength > b.data.size()) fail("bufferView " + std::to_string(a.bufferView) + " reaches past the end of buffer " + std::to_string(v.buffer));
+    if (end > v.byteOffset + v.byteLength) fail(name + " reads past the end of bufferView " + std::to_string(a.bufferView));
+    *stride = s;
+    *count = a.count;
+    return b.data.data() + start;
+  }
+
+  std::vector<glm::vec3> vec3s(int index, const std::string& what) const {
+    size_t stride, count;
+    const uint8_t* p = access(index, what, TINYGLTF_TYPE_VEC3, {TINYGLTF_COMPONENT_TYPE_FLOAT}, &stride, &count);
+    std::vector<glm::vec3> out(count);
+    for (size_t i = 0; i < count; ++i) {
+      std::memcpy(&out[i], p + i * stride, sizeof(glm::vec3));
+      if (!std::isfinite(out[i].x) || !std::isfinite(out[i].y) || !std::isfinite(out[i].z))
+        fail(what + " (accessor " + std::to_string(index) + ") holds a non-finite value at element " + std::to_string(i));
+    }
+    return out;
+  }
+
+  std::vector<uint32_t> indices(int index, const std::string& what, size_t vertexCount) const {
+    size_t stride, count;
+    const uint8_t* p = access(index, what, TINYGLTF_TYPE_SCALAR,
+                              {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT},
+                              &stride, &count);
+    int ct = model.accessors[index].componentType;
+    std::vector<uint32_t> out(count);
+    for (size_t i = 0; i < count; ++i) {
+      const uint8_t* e = p + i * stride;
+      uint32_t v = 0;
+      if (ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE) v = *e;
+      else if (ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT) { uint16_t s; std::memcpy(&s, e, 2); v = s; }
+      else std::memcpy(&v, e, 4);
+      if (v >= vertexCount) fail(what + " (accessor " + std::to_string(index) + "): index " + std::to_string(v) + " at element " + std::to_string(i) +
+                                 " is out of range (" + std::to_string(vertexCount) + " vertices)");
+      out[i] = v;
+    }
+    return out;
+  }
+};
+
+glm::mat4 NodeTransform(const tinygltf::Node& n) {
+  if (n.matrix.size() == 16) {
+    glm::dmat4 m = glm::make_mat4(n.matrix.data());
+    return glm::mat4(m);
+  }
+  glm::mat4 m(1.0f);
+  if (n.translation.size() == 3) m = glm::translate(m, glm::vec3(n.translation[0], n.translation[1], n.translation[2]));
+  if (n.rotation.size() == 4) m *= glm::mat4_cast(glm::quat(float(n.rotation[3]), float(n.rotation[0]), float(n.rotation[1]), float(n.rotation[2])));
+  if (n.scale.size() == 3) m = glm::scale(m, glm::vec3(n.scale[0], n.scale[1], n.scale[2]));
+  return m;
+}
+
+// Smooth normals for primitives without NORMAL: area-weighted face normals per vertex.
+void ComputeNormals(Mesh& m) {
+  for (Vertex& v : m.vertices) v.normal = glm::vec3(0);
+  for (size_t i = 0; i + 2 < m.indices.size(); i += 3) {
+    Vertex &a = m.vertices[m.indices[i]], &b = m.vertices[m.indices[i + 1]], &c = m.vertices[m.indices[i + 2]];
+    glm::vec3 n = glm::cross(b.position - a.position, c.position - a.position);
+    a.normal += n, b.normal += n, c.normal += n;
+  }
+  for (Vertex& v : m.vertices) v.normal = glm::length(v.normal) > 0 ? glm::normalize(v.normal) : glm::vec3(0, 1, 0);
+}
+
+// Triangle lists from strips and fans, keeping glTF's counter-clockwise front faces.
+std::vector<uint32_t> ToTriangleList(int mode, const std::vector<uint32_t>& idx) {
+  if (mode == TINYGLTF_MODE_TRIANGLES) return std::vector<uint32_t>(idx.begin(), idx.begin() + idx.size() / 3 * 3);
+  std::vector<uint32_t> out;
+  for (size_t i = 2; i < idx.size(); ++i) {
+    if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+      if (i % 2 == 0) out.insert(out.end(), {idx[i - 2], idx[i - 1], idx[i]});
+      else out.insert(out.end(), {idx[i - 1], idx[i - 2], idx[i]});
+    } else {
+      out.insert(out.end(), {idx[0], idx[i - 1], idx[i]});
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+Scene LoadGltf(const std::filesystem::path& path) {
+  std::string file = path.string();
+  if (!std::filesystem::exists(path)) throw std::runtime_error(file + ": no such file");
+  tinygltf::TinyGLTF loader;
+  // The scenes carry geometry only; never decode images (and never fail on them).
+  loader.SetImageLoader([](tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) { return true; }, nullptr);
+  tinygltf::Model model;
+  std::string err, warn;
+  std::string ext = path.extension().string();
+  bool ok = (ext == ".glb" || ext == ".GLB") ? loader.LoadBinaryFromFile(&model, &err, &warn, file) : loader.LoadASCIIFromFile(&model, &err, &warn, file);
+  if (!ok) throw std::runtime_error(file + ": " + (err.empty() ? std::string("not a valid glTF 2.0 file") : err));
+  Reader r{model, file};
+
+  Scene s;
+  s.name = path.stem().string();
+  // (mesh, primitive) -> scene mesh index, so instanced meshes are uploaded once.
+  std::map<std::pair<int, int>, uint32_t> meshOf;
+  size_t skipped = 0;
+
+  std::vector<int> roots;
+  int sceneIndex = model.defaultScene >= 0 ? model.defaultScene : 0;
+  if (sceneIndex < int(model.scenes.size())) roots = model.scenes[sceneIndex].nodes;
+  else
+    for (size_t i = 0; i < model.nodes.size(); ++i) roots.push_back(int(i));
+
+  struct Item {
+    int node;
+    glm::mat4 parent;
+    int depth;
+  };
+  std::vector<Item> stack;
+  for (int n : roots) stack.push_back({n, glm::mat4(1.0f), 0});
+  while (!stack.empty()) {
+    Item it = stack.back();
+    stack.pop_back();
+    if (it.node < 0 || size_t(it.node) >= model.nodes.size()) r.fail("a scene refers to node " + std::to_string(it.node) + ", which does not exist");
+    if (it.depth > 64) r.fail("the node hierarchy is deeper than 64 levels (a cycle?)");
+    const tinygltf::Node& node = model.nodes[it.node];
+    glm::mat4 world = it.parent * NodeTransform(node);
+    for (int c : node.children) stack.push_back({c, world, it.depth + 1});
+    if (node.mesh < 0) continue;
+    if (size_t(node.mesh) >= model.meshes.size()) r.fail("node " + std::to_string(it.node) + " refers to mesh " + std::to_string(node.mesh) + ", which does not exist");
+    const tinygltf::Mesh& mesh = model.meshes[node.mesh];
+    for (size_t p = 0; p < mesh.primitives.size(); ++p) {
+      const tinygltf::Primitive& prim = mesh.primitives[p];
+      std::string what = "mesh '" + mesh.name + "' primitive " + std::to_string(p);
+      if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != TINYGLTF_MODE_TRIANGLE_STRIP && prim.mode != TINYGLTF_MODE_TRIANGLE_FAN && prim.mode != -1) {
+        ++skipped;  // points and lines cast no shadows here
+        continue;
+      }
+      auto key = std::make_pair(node.mesh, int(p));
+      auto found = meshOf.find(key);
+      if (found == meshOf.end()) {
+        auto pos = prim.attributes.find("POSITION");
+        if (pos == prim.attributes.end()) r.fail(what + " has no POSITION");
+        std::vector<glm::vec3> positions = r.vec3s(pos->second, what + " POSITION");
+        Mesh m;
+        m.name = mesh.name.empty() ? "mesh" + std::to_string(node.mesh) : mesh.name;
+        if (mesh.primitives.size() > 1) m.name += "#" + std::to_string(p);
+        m.vertices.resize(positions.size());
+        for (size_t i = 0; i < positions.size(); ++i) m.vertices[i].position = positions[i];
+        std::vector<uint32_t> idx;
+        if (prim.indices >= 0) {
+          idx = r.indices(prim.indices, what + " indices", positions.size());
+        } else {
+          idx.resize(positions.size());
+          for (size_t i = 0; i < idx.size(); ++i) idx[i] = uint32_t(i);
+        }
+        m.indices = ToTriangleList(prim.mode == -1 ? TINYGLTF_MODE_TRIANGLES : prim.mode, idx);
+        auto nrm = prim.attributes.find("NORMAL");
+        if (nrm != prim.attributes.end()) {
+          std::vector<glm::vec3> normals = r.vec3s(nrm->second, what + " NORMAL");
+          if (normals.size() != positions.size()) r.fail(what + ": NORMAL and POSITION have different counts");
+          for (size_t i = 0; i < normals.size(); ++i) {
+            float len = glm::length(normals[i]);
+            m.vertices[i].normal = len > 0 ? normals[i] / len : glm::vec3(0, 1, 0);
+          }
+        } else {
+          ComputeNormals(m);
+        }
+        found = meshOf.emplace(key, s.addMesh(std::move(m))).first;
+      }
+      s.addInstance(found->second, world, glm::vec3(0.72f));
+    }
+  }
+  if (s.instances.empty()) r.fail("no triangle geometry found" + (skipped ? " (" + std::to_string(skipped) + " point/line primitives skipped)" : std::string()));
+  s.finalize();
+
+  // A camera that sees the whole scene from above one corner, and a low light for long shadows.
+  glm::vec3 c = s.bounds.center(), e = s.bounds.extent();
+  float radius = glm::length(e) * 0.5f;
+  s.camera.target = c;
+  s.camera.position = c + glm::normalize(glm::vec3(0.6f, 0.55f, 0.8f)) * radius * 1.6f;
+  s.camera.nearZ = radius * 0.01f;
+  s.camera.farZ = radius * 4.0f;
+  s.light.direction = glm::normalize(glm::vec3(-0.5f, -0.7f, -0.35f));
+  return s;
+}
+
+}  // namespace sp::scene
