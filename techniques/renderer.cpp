@@ -48,6 +48,10 @@ Renderer::Renderer(Device& device, const scene::Scene& scene, std::unique_ptr<Te
   const INPUT_ELEMENT_DESC* el = scene::GpuScene::InputElements(&n);
   litLayout_ = device.CreateInputLayout(el, n, vs);
   RASTERIZER_DESC rd;
+  // Scenes follow glTF: right-handed, front faces counter-clockwise as seen by the viewer. D3D11
+  // judges winding as it appears on the render target, so such content needs
+  // FrontCounterClockwise (D3D11's default, clockwise, belongs to left-handed content).
+  rd.FrontCounterClockwise = true;
   litRasterizer_ = device.CreateRasterizerState(rd);
 }
 

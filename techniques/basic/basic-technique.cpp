@@ -41,6 +41,7 @@ class BasicTechnique final : public Technique {
     srv_ = device.CreateShaderResourceView(map_.get(), &sd);
 
     RASTERIZER_DESC rd;
+    rd.FrontCounterClockwise = true;  // glTF winding, as in the lit pass
     rd.DepthBias = p.getInt("depth_bias");
     rd.SlopeScaledDepthBias = p.getFloat("slope_bias");
     rd.DepthBiasClamp = p.getFloat("bias_clamp");
