@@ -72,6 +72,9 @@ struct Checker {
           fail(ErrorId::RESOURCE_TYPE_MISMATCH, sh, slot + " returns " + ComponentName(r.returnType) + " but the view's format is " + std::string(FormatName(d.Format)));
         break;
       case ShaderResourceType::StructuredBuffer:
+        // glslang compiles ByteAddressBuffer exactly like StructuredBuffer<uint> (a runtime array
+        // of 4-byte elements), so reflection cannot tell them apart: accept a raw view there.
+        if (raw && r.structureStride == 4) break;
         if (!structured) fail(ErrorId::RESOURCE_TYPE_MISMATCH, sh, slot + " is a StructuredBuffer but " + Describe(v) + " is not a view of a structured buffer");
         if (r.structureStride && buf->GetDesc().StructureByteStride != r.structureStride)
           fail(ErrorId::RESOURCE_TYPE_MISMATCH, sh, slot + " has a stride of " + std::to_string(r.structureStride) + " bytes but the buffer's StructureByteStride is " +
@@ -105,6 +108,7 @@ struct Checker {
         if (!buf || structured || raw) fail(ErrorId::RESOURCE_TYPE_MISMATCH, sh, slot + " is an RWBuffer<> but " + Describe(v) + " is not a typed buffer view");
         break;
       case ShaderResourceType::RWStructuredBuffer:
+        if (raw && r.structureStride == 4 && !r.appendConsume) break;  // RWByteAddressBuffer, as above
         if (!structured) fail(ErrorId::RESOURCE_TYPE_MISMATCH, sh, slot + " is a structured UAV but " + Describe(v) + " is not a view of a structured buffer");
         if (r.appendConsume && !(d.Buffer.Flags & (BUFFER_UAV_FLAG_APPEND | BUFFER_UAV_FLAG_COUNTER)))
           fail(ErrorId::RESOURCE_TYPE_MISMATCH, sh, slot + " uses Append/Consume/IncrementCounter but the view was created without BUFFER_UAV_FLAG_APPEND or _COUNTER");

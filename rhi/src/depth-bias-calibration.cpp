@@ -15,11 +15,9 @@ const char* kCalibrationShader = R"(
 // A full-viewport triangle at constant depth 0.5: no slope, so only the constant bias moves it.
 float4 main(uint id : SV_VertexID) : SV_Position {
   float2 p = float2((id << 1) & 2, id & 2);
-  return float4(p * 2.0 - 1.0, 0.5, 1.0);
+  return float4(p * 2.0 - 1.0, 0.25, 1.0);
 }
 )";
-
-constexpr int32_t kBiasUnits = 1000;  // large, so rounding of the result does not matter
 
 // Depth at the centre texel, in units of the format's LSB (UNORM) or as a float.
 double RenderBiased(Device& dev, VertexShader* vs, FORMAT fmt, int32_t bias) {
@@ -89,21 +87,26 @@ void Device::CalibrateDepthBias() {
     FORMAT fmt;
     float* scale;
     double lsbPerD3DUnit;  // how far one D3D11 bias unit moves the stored value
+    int32_t units;         // as large as the format's range allows from z = 0.25, for precision
   };
-  const Item items[] = {{FORMAT_D16_UNORM, &info_.depthBiasScaleD16, 1.0},
-                        {FORMAT_D24_UNORM_S8_UINT, &info_.depthBiasScaleD24, 1.0},
-                        {FORMAT_D32_FLOAT, &info_.depthBiasScaleD32, std::ldexp(1.0, -24)}};  // z = 0.5: 2^(-1-23)
+  const Item items[] = {{FORMAT_D16_UNORM, &info_.depthBiasScaleD16, 1.0, 10000},
+                        {FORMAT_D24_UNORM_S8_UINT, &info_.depthBiasScaleD24, 1.0, 1000000},
+                        {FORMAT_D32_FLOAT, &info_.depthBiasScaleD32, std::ldexp(1.0, -25), 100000}};  // z = 0.25: 2^(-2-23)
   for (const Item& it : items) {
     if (!(CheckFormatSupport(it.fmt) & FORMAT_SUPPORT_DEPTH_STENCIL)) continue;
     *it.scale = 1.0f;  // measure the raw driver behaviour
     double base = RenderBiased(*this, vs.get(), it.fmt, 0);
-    double biased = RenderBiased(*this, vs.get(), it.fmt, kBiasUnits);
-    double perUnit = (biased - base) / kBiasUnits / it.lsbPerD3DUnit;
+    double biased = RenderBiased(*this, vs.get(), it.fmt, it.units);
+    double perUnit = (biased - base) / it.units / it.lsbPerD3DUnit;
     if (!(perUnit > 0.01 && perUnit < 100.0)) {
       Message(MessageSeverity::Warning, std::string("depth-bias calibration for ") + std::string(FormatName(it.fmt)) +
                                             " measured an implausible unit (" + std::to_string(perUnit) + "); using 1");
       continue;
     }
+    // Drivers use a power of two of the format's LSB (Mesa 22.3: 2 for UNORM, 1 for float);
+    // D3D11's UNORM unit 1/(2^n - 1) differs from 2^-n by less than the measurement can see.
+    double snapped = std::exp2(std::round(std::log2(perUnit)));
+    if (std::abs(perUnit - snapped) < 2e-3 * snapped) perUnit = snapped;
     *it.scale = float(1.0 / perUnit);
   }
 }

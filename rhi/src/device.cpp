@@ -208,10 +208,10 @@ Ref<Texture2D> Device::CreateTexture2D(const TEXTURE2D_DESC& desc, const SUBRESO
     if (desc.Usage != USAGE_DEFAULT) Fail(ErrorId::USAGE_INVALID, call, obj, "multisampled textures must be USAGE_DEFAULT");
     if (desc.SampleDesc.Quality != 0) Fail(ErrorId::INVALID_DESC, call, obj, "SampleDesc.Quality must be 0 (standard pattern)");
     if (init) Fail(ErrorId::INITIAL_DATA_INVALID, call, obj, "multisampled textures cannot have initial data");
-    if (samples > MaxSampleCountBackend(desc.Format))
+    if (!SampleCountSupportedBackend(desc.Format, samples))
       Fail(ErrorId::FORMAT_UNSUPPORTED, call, obj,
            std::to_string(samples) + "x MSAA is not supported for this format on this device (max " +
-               std::to_string(MaxSampleCountBackend(desc.Format)) + "x)");
+               std::to_string(MaxSampleCountBackend(desc.Format)) + "x; check CheckMultisampleQualityLevels)");
   }
   ValidateTextureShape(s, call, obj, init);
   Ref<Texture2D> t = Make<Texture2D>(s);
@@ -239,7 +239,9 @@ void Device::ValidateTextureShape(TextureShape& s, const char* call, const std::
   const FormatInfo& fi = GetFormatInfo(s.format);
   if (fi.format == FORMAT_UNKNOWN) Fail(ErrorId::FORMAT_UNSUPPORTED, call, obj, "unknown or unsupported Format");
   if (fi.bytesPerElement == 12) Fail(ErrorId::FORMAT_UNSUPPORTED, call, obj, "R32G32B32 formats are only supported for buffers");
-  if (fi.readsDepth || fi.readsStencil)
+  // R24_UNORM_X8_TYPELESS & co. exist only as views of a depth-stencil family; R32_FLOAT and
+  // R16_UNORM also read depth but are ordinary colour formats.
+  if ((fi.readsDepth || fi.readsStencil) && fi.stencilBits)
     Fail(ErrorId::FORMAT_UNSUPPORTED, call, obj, std::string(fi.name) + " is a view format; create the texture as " +
                                                     std::string(FormatName(fi.typelessFamily)));
   if (s.bindFlags & ~0xffu) Fail(ErrorId::INVALID_DESC, call, obj, "BindFlags has unknown bits");
@@ -386,7 +388,7 @@ uint32_t Device::CheckFormatSupport(FORMAT format) const { return FormatSupportB
 
 uint32_t Device::CheckMultisampleQualityLevels(FORMAT format, uint32_t sampleCount) const {
   if (sampleCount == 0 || (sampleCount & (sampleCount - 1))) return 0;
-  return sampleCount <= MaxSampleCountBackend(format) ? 1 : 0;
+  return sampleCount == 1 || SampleCountSupportedBackend(format, sampleCount) ? 1 : 0;
 }
 
 }  // namespace sp

@@ -178,7 +178,7 @@ std::vector<uint32_t> RunGlslang(const std::string& source, const std::string& f
   glslang::GlslangToSpv(*program.getIntermediate(lang), spirv, &logger, &spvOptions);
   std::string msgs = logger.getAllMessages();
   if (msgs.find("error") != std::string::npos || msgs.find("Missing functionality") != std::string::npos) {
-    // glslang exits 0 but writes invalid SPIR-V for unimplemented features; report them.
+    // glslang exits 0 but writes invalid SPIR-V for HLSL features it cannot translate; report them.
     throw CompileError("glslang (SPIR-V)", fileName + ":" + entry, {{fileName, 0, msgs}}, msgs);
   }
   return spirv;
@@ -262,6 +262,7 @@ ShaderBytecode CompileSource(std::string_view sourceView, const std::string& fil
   spirv = Legalize(spirv, name);
   ConstOffsetsFromConstants(spirv);
   RemapCounterBindings(spirv, vkbind::kUnorderedAccess, vkbind::kUavCounter);
+  ShiftUnshiftedTextureBindings(spirv, vkbind::kShaderResource);
   SetFormatOfReadImages(spirv);
   Validate(spirv, fileName, name);
 

@@ -37,15 +37,14 @@ class Std140Rewriter {
   Layout Struct(uint32_t typeId, uint32_t srcBase, uint32_t dstBase, bool record) {
     const SPIRType& t = c_.get_type(typeId);
     uint32_t offset = 0, align = 16;
+    // Source offsets follow fxc's packing, not glslang's decorations (see D3DMemberOffsets).
+    const std::vector<uint32_t> srcOffsets = D3DMemberOffsets(c_, t);
     for (uint32_t i = 0; i < t.member_types.size(); ++i) {
-      uint32_t srcOff = c_.get_member_decoration(t.self, i, spv::DecorationOffset);
+      uint32_t srcOff = srcOffsets[i];
       bool rowMajor = c_.has_member_decoration(t.self, i, spv::DecorationRowMajor);
       uint32_t memberAlign = Align(t.member_types[i], rowMajor);
       offset = AlignUp(offset, memberAlign);
-      uint32_t srcArrayStride = 0;
-      const SPIRType& mt = c_.get_type(t.member_types[i]);
-      if (!mt.array.empty()) srcArrayStride = c_.get_decoration(t.member_types[i], spv::DecorationArrayStride);
-      Layout l = Member(t.member_types[i], rowMajor, srcBase + srcOff, dstBase + offset, srcArrayStride, record);
+      Layout l = Member(t.member_types[i], rowMajor, srcBase + srcOff, dstBase + offset, record);
       if (rewrite_ && c_.get_member_decoration(t.self, i, spv::DecorationOffset) != offset) {
         c_.set_member_decoration(t.self, i, spv::DecorationOffset, offset);
       }
@@ -65,18 +64,18 @@ class Std140Rewriter {
     return t.vecsize == 1 ? 4 : t.vecsize == 2 ? 8 : 16;
   }
 
-  Layout Member(uint32_t typeId, bool rowMajor, uint32_t src, uint32_t dst, uint32_t srcArrayStride, bool record) {
+  Layout Member(uint32_t typeId, bool rowMajor, uint32_t src, uint32_t dst, bool record) {
     const SPIRType& t = c_.get_type(typeId);
     if (!t.array.empty()) {
       uint32_t elemType = t.parent_type;
       uint32_t count = t.array.back();
       if (!t.array_size_literal.back()) Fail("cbuffer", "specialization-constant array sizes are not supported in cbuffers");
-      // The element's own std140 size decides the stride (rounded to 16).
-      const SPIRType& et = c_.get_type(elemType);
-      uint32_t elemSrcStride = et.array.empty() ? 0 : c_.get_decoration(elemType, spv::DecorationArrayStride);
-      Layout el = Member(elemType, rowMajor, src, dst, elemSrcStride, false);
+      // The element's own std140 size decides the stride (rounded to 16); in D3D every element
+      // starts a register.
+      uint32_t srcStride = AlignUp(D3DTypeSize(c_, elemType, rowMajor), 16);
+      Layout el = Member(elemType, rowMajor, src, dst, false);
       uint32_t stride = AlignUp(std::max(el.size, 16u), 16);
-      for (uint32_t i = 0; i < count; ++i) Member(elemType, rowMajor, src + i * srcArrayStride, dst + i * stride, elemSrcStride, record);
+      for (uint32_t i = 0; i < count; ++i) Member(elemType, rowMajor, src + i * srcStride, dst + i * stride, record);
       if (rewrite_ && c_.get_decoration(typeId, spv::DecorationArrayStride) != stride) c_.set_decoration(typeId, spv::DecorationArrayStride, stride);
       return {stride * count, 16};
     }
@@ -130,6 +129,9 @@ GlslOutput CrossCompileToGlsl(const std::vector<uint32_t>& spirv, const ShaderRe
     o.vulkan_semantics = false;
     o.separate_shader_objects = true;
     o.enable_420pack_extension = true;
+    // glslang maps SV_InstanceID to InstanceIndex, which counts from the draw's first instance;
+    // D3D's SV_InstanceID, like GL's gl_InstanceID, does not include StartInstanceLocation.
+    o.vertex.support_nonzero_base_instance = false;
     c.set_common_options(o);
 
     GlStageBases bases = GlBasesForStage(refl.stage);
@@ -214,6 +216,21 @@ GlslOutput CrossCompileToGlsl(const std::vector<uint32_t>& spirv, const ShaderRe
       b.glBinding = unit++;
       c.set_decoration(cis.combined_id, spv::DecorationBinding, b.glBinding);
       c.set_name(cis.combined_id, "sp_" + c.get_name(cis.image_id) + (dummy ? std::string("_load") : "_" + c.get_name(cis.sampler_id)));
+      out.bindings.push_back(std::move(b));
+    }
+    // Typed buffers (Buffer<T>) are only ever fetched: SPIRV-Cross declares them as samplerBuffer
+    // without a combined sampler, so they need a texture unit of their own.
+    for (const auto& img : res.separate_images) {
+      if (c.get_type(img.type_id).image.dim != spv::DimBuffer) continue;
+      GlBinding b;
+      b.kind = GlBindingKind::CombinedSampler;
+      b.registerClass = RegisterClass::ShaderResource;
+      b.registerIndex = c.get_decoration(img.id, spv::DecorationBinding) - vkbind::kShaderResource;
+      b.samplerRegister = -1;
+      if (unit >= bases.textureUnit + 16) Fail(sourceName, "more than 16 texture/sampler pairs in one stage (GL_MAX_TEXTURE_IMAGE_UNITS minimum)");
+      b.glBinding = unit++;
+      c.set_decoration(img.id, spv::DecorationBinding, b.glBinding);
+      c.unset_decoration(img.id, spv::DecorationDescriptorSet);
       out.bindings.push_back(std::move(b));
     }
     out.glsl = c.compile();

@@ -76,32 +76,42 @@ std::string HlslTypeName(const spirv_cross::Compiler& c, uint32_t typeId, bool r
   return base;
 }
 
-// Size a member occupies under D3D packing (no padding after the last used component).
-uint32_t D3DSize(const spirv_cross::Compiler& c, const SPIRType& structType, uint32_t member) {
-  const SPIRType& t = c.get_type(structType.member_types[member]);
-  uint32_t elem;
-  if (t.basetype == SPIRType::Struct) {
-    const SPIRType* bp = &t;
-    while (!bp->array.empty() && bp->parent_type) bp = &c.get_type(bp->parent_type);
-    const SPIRType& base = *bp;
-    uint32_t n = uint32_t(base.member_types.size());
-    elem = n ? c.type_struct_member_offset(base, n - 1) + D3DSize(c, base, n - 1) : 0;
-  } else if (t.columns > 1) {
-    bool rowMajor = c.has_member_decoration(structType.self, member, spv::DecorationRowMajor);
-    uint32_t vectors = rowMajor ? t.vecsize : t.columns;
-    uint32_t comps = rowMajor ? t.columns : t.vecsize;
-    elem = (vectors - 1) * 16 + comps * 4;
-  } else {
-    elem = t.vecsize * 4;
+}  // namespace
+
+uint32_t D3DTypeSize(const spirv_cross::Compiler& c, uint32_t typeId, bool rowMajorSpirv) {
+  const SPIRType& t = c.get_type(typeId);
+  if (!t.array.empty()) {
+    // Every element starts a register; the last one is not padded.
+    uint32_t elem = D3DTypeSize(c, t.parent_type, rowMajorSpirv);
+    return (t.array.back() - 1) * ((elem + 15) / 16 * 16) + elem;
   }
-  uint32_t count = 1;
-  for (uint32_t dim : t.array) count *= dim;
-  if (count <= 1) return elem;
-  uint32_t stride = c.type_struct_member_array_stride(structType, member);
-  return (count - 1) * stride + elem;
+  if (t.basetype == SPIRType::Struct) {
+    uint32_t n = uint32_t(t.member_types.size());
+    if (!n) return 0;
+    return D3DMemberOffsets(c, t).back() + D3DTypeSize(c, t.member_types[n - 1], c.has_member_decoration(t.self, n - 1, spv::DecorationRowMajor));
+  }
+  if (t.columns > 1) {
+    uint32_t vectors = rowMajorSpirv ? t.vecsize : t.columns;
+    uint32_t comps = rowMajorSpirv ? t.columns : t.vecsize;
+    return (vectors - 1) * 16 + comps * 4;
+  }
+  return t.vecsize * 4;
 }
 
-}  // namespace
+std::vector<uint32_t> D3DMemberOffsets(const spirv_cross::Compiler& c, const SPIRType& structType) {
+  std::vector<uint32_t> offsets;
+  uint32_t cursor = 0;
+  for (uint32_t i = 0; i < structType.member_types.size(); ++i) {
+    const SPIRType& t = c.get_type(structType.member_types[i]);
+    uint32_t size = D3DTypeSize(c, structType.member_types[i], c.has_member_decoration(structType.self, i, spv::DecorationRowMajor));
+    bool startsRegister = !t.array.empty() || t.basetype == SPIRType::Struct || t.columns > 1;
+    // Vectors and scalars never straddle a 16-byte register.
+    if (startsRegister || (size && cursor / 16 != (cursor + size - 1) / 16)) cursor = (cursor + 15) / 16 * 16;
+    offsets.push_back(cursor);
+    cursor += size;
+  }
+  return offsets;
+}
 
 ShaderReflection Reflect(const std::vector<uint32_t>& spirv, ShaderStage stage, const std::string& entry, const std::string& sourceName) {
   spirv_cross::Compiler c(spirv);
@@ -132,11 +142,12 @@ ShaderReflection Reflect(const std::vector<uint32_t>& spirv, ShaderStage stage, 
     cb.vkBinding = vkbind::kConstantBuffer + cb.registerIndex;
     const SPIRType& t = c.get_type(ub.base_type_id);
     uint32_t end = 0;
+    std::vector<uint32_t> offsets = D3DMemberOffsets(c, t);
     for (uint32_t i = 0; i < t.member_types.size(); ++i) {
       CBufferMember m;
       m.name = c.get_member_name(t.self, i);
-      m.offset = c.type_struct_member_offset(t, i);
-      m.size = D3DSize(c, t, i);
+      m.offset = offsets[i];
+      m.size = D3DTypeSize(c, t.member_types[i], c.has_member_decoration(t.self, i, spv::DecorationRowMajor));
       m.typeName = HlslTypeName(c, t.member_types[i], c.has_member_decoration(t.self, i, spv::DecorationRowMajor));
       end = std::max(end, m.offset + m.size);
       cb.members.push_back(std::move(m));
@@ -145,17 +156,6 @@ ShaderReflection Reflect(const std::vector<uint32_t>& spirv, ShaderStage stage, 
     r.cbuffers.push_back(std::move(cb));
   }
 
-  std::set<uint32_t> comparison = ComparisonSamplerVariables(spirv);
-  for (const auto& s : res.separate_samplers) {
-    ShaderResourceBinding b;
-    b.name = s.name;
-    b.registerClass = RegisterClass::Sampler;
-    b.registerIndex = registerOf(s.id, vkbind::kSampler, COMMONSHADER_SAMPLER_SLOT_COUNT, "sampler");
-    b.type = comparison.count(s.id) ? ShaderResourceType::ComparisonSampler : ShaderResourceType::Sampler;
-    b.vkSet = set;
-    b.vkBinding = vkbind::kSampler + b.registerIndex;
-    r.resources.push_back(b);
-  }
   for (const auto& img : res.separate_images) {
     const SPIRType& t = c.get_type(img.type_id);
     ShaderResourceBinding b;
@@ -168,6 +168,17 @@ ShaderReflection Reflect(const std::vector<uint32_t>& spirv, ShaderStage stage, 
     b.vkSet = set;
     b.vkBinding = vkbind::kShaderResource + b.registerIndex;
     if (!t.array.empty()) Fail(sourceName, "texture arrays of objects ('" + img.name + "[]') are not supported; use Texture2DArray");
+    r.resources.push_back(b);
+  }
+  std::set<uint32_t> comparison = ComparisonSamplerVariables(spirv);
+  for (const auto& s : res.separate_samplers) {
+    ShaderResourceBinding b;
+    b.name = s.name;
+    b.registerClass = RegisterClass::Sampler;
+    b.registerIndex = registerOf(s.id, vkbind::kSampler, COMMONSHADER_SAMPLER_SLOT_COUNT, "sampler");
+    b.type = comparison.count(s.id) ? ShaderResourceType::ComparisonSampler : ShaderResourceType::Sampler;
+    b.vkSet = set;
+    b.vkBinding = vkbind::kSampler + b.registerIndex;
     r.resources.push_back(b);
   }
   for (const auto& img : res.storage_images) {

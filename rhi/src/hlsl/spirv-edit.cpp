@@ -2,6 +2,7 @@
 
 #include <cstddef>
 #include <spirv/unified1/spirv.hpp>
+#include <string>
 #include <unordered_map>
 
 namespace sp::hlsl {
@@ -134,6 +135,43 @@ void RemapCounterBindings(std::vector<uint32_t>& spirv, uint32_t uavBase, uint32
     uint32_t owner = binding[it->second];
     if (owner >= uavBase) in[3] = counterBase + (owner - uavBase);
   });
+}
+
+void ShiftUnshiftedTextureBindings(std::vector<uint32_t>& spirv, uint32_t textureBase) {
+  std::set<uint32_t> sampledImages;                     // OpTypeImage with Sampled = 1
+  std::unordered_map<uint32_t, uint32_t> arrayElement;  // OpTypeArray -> element type
+  std::unordered_map<uint32_t, uint32_t> pointee;       // UniformConstant pointer -> type
+  std::set<uint32_t> textures;                          // variables of (arrays of) sampled images
+  ForEach(spirv, [&](spv::Op op, uint32_t wc, uint32_t* in) {
+    if (op == spv::OpTypeImage && wc >= 9 && in[7] == 1) sampledImages.insert(in[1]);
+    if ((op == spv::OpTypeArray || op == spv::OpTypeRuntimeArray) && wc >= 3) arrayElement[in[1]] = in[2];
+    if (op == spv::OpTypePointer && wc >= 4 && in[2] == spv::StorageClassUniformConstant) pointee[in[1]] = in[3];
+    if (op == spv::OpVariable && wc >= 4 && in[3] == spv::StorageClassUniformConstant) {
+      auto p = pointee.find(in[1]);
+      if (p == pointee.end()) return;
+      uint32_t type = p->second;
+      for (auto a = arrayElement.find(type); a != arrayElement.end(); a = arrayElement.find(type)) type = a->second;
+      if (sampledImages.count(type)) textures.insert(in[2]);
+    }
+  });
+  // The two variables share the HLSL name; the unshifted one is `textureBase` below the other.
+  std::unordered_map<uint32_t, std::string> names;
+  std::unordered_map<uint32_t, uint32_t*> bindingWord;
+  ForEach(spirv, [&](spv::Op op, uint32_t wc, uint32_t* in) {
+    if (op == spv::OpName && wc >= 3 && textures.count(in[1])) names[in[1]] = reinterpret_cast<const char*>(in + 2);
+    if (op == spv::OpDecorate && wc >= 4 && in[2] == spv::DecorationBinding && textures.count(in[1])) bindingWord[in[1]] = &in[3];
+  });
+  for (auto& [var, word] : bindingWord) {
+    auto name = names.find(var);
+    if (name == names.end()) continue;
+    for (auto& [other, otherWord] : bindingWord) {
+      auto otherName = names.find(other);
+      if (other != var && otherName != names.end() && otherName->second == name->second && *otherWord == *word + textureBase) {
+        *word = *otherWord;
+        break;
+      }
+    }
+  }
 }
 
 std::set<uint32_t> ComparisonSamplerVariables(const std::vector<uint32_t>& spirv) {

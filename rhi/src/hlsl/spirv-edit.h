@@ -16,6 +16,11 @@ void ConstOffsetsFromConstants(std::vector<uint32_t>& spirv);
 // which can be another register's. Move each counter to `counterBase + (binding - uavBase)`.
 void RemapCounterBindings(std::vector<uint32_t>& spirv, uint32_t uavBase, uint32_t counterBase);
 
+// glslang gives a texture used with both a SamplerComparisonState and a SamplerState two
+// variables (a depth and a non-depth image) and applies the texture binding shift to only one:
+// the other keeps the bare register number. Give it its twin's binding.
+void ShiftUnshiftedTextureBindings(std::vector<uint32_t>& spirv, uint32_t textureBase);
+
 // Variables (by result id) of samplers that feed a depth-comparison instruction: HLSL's
 // SamplerComparisonState, which SPIR-V does not distinguish by type.
 std::set<uint32_t> ComparisonSamplerVariables(const std::vector<uint32_t>& spirv);

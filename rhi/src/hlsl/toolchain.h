@@ -5,15 +5,27 @@
 #include <string>
 #include <vector>
 
+namespace spirv_cross {
+class Compiler;
+struct SPIRType;
+}  // namespace spirv_cross
+
 namespace sp::hlsl {
 
 // Toolchain revision: part of every cache key. Bump it when a stage changes its output.
-inline constexpr const char* kToolchainRevision = "sp-hlsl-7";
+inline constexpr const char* kToolchainRevision = "sp-hlsl-12";
 
 // Reflection from SPIR-V that still carries SPV_GOOGLE_hlsl_functionality1 decorations
 // (semantics, counter buffers). Throws CompileError for bindings outside ShadowPort's scheme.
 ShaderReflection Reflect(const std::vector<uint32_t>& spirv, ShaderStage stage, const std::string& entry,
                          const std::string& sourceName);
+
+// D3D (fxc) cbuffer packing, which glslang's HLSL offsets do not fully follow: fxc packs the
+// member after a matrix, an array or a struct into the unused tail of its last 16-byte register
+// (a float after a float3x3 lands at +44, after float[3] at +36). Offsets are relative to the
+// struct; `rowMajorSpirv` is the member's SPIR-V RowMajor decoration (HLSL column_major).
+uint32_t D3DTypeSize(const spirv_cross::Compiler& c, uint32_t typeId, bool rowMajorSpirv);
+std::vector<uint32_t> D3DMemberOffsets(const spirv_cross::Compiler& c, const spirv_cross::SPIRType& structType);
 
 struct GlslOutput {
   std::string glsl;

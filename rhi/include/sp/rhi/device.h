@@ -148,6 +148,9 @@ class Device {
   virtual std::unique_ptr<detail::BackendObject> CreateQueryBackend(Query& query) = 0;
   virtual uint32_t FormatSupportBackend(FORMAT format) const = 0;
   virtual uint32_t MaxSampleCountBackend(FORMAT format) const = 0;
+  // Whether exactly `count` samples (a power of two) are supported: drivers may offer 4x but not
+  // 2x (Mesa's software rasterizers), which a maximum alone cannot say.
+  virtual bool SampleCountSupportedBackend(FORMAT format, uint32_t count) const { return count <= MaxSampleCountBackend(format); }
 
  private:
   friend class Object;
