@@ -1,0 +1,221 @@
+// Descriptor sets: one per stage, written from the D3D11 slots the stage's shader reads. The
+// resolved descriptors are compared with the previous draw's, so a set is only rewritten when
+// something it points at changed (a rebind, a dynamic buffer that moved, an image layout).
+#include "vulkan-internal.h"
+
+namespace sp::vk {
+namespace {
+
+VkPipelineStageFlags2 StageBit(ShaderStage s) {
+  switch (s) {
+    case ShaderStage::Vertex: return VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT;
+    case ShaderStage::Pixel: return VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
+    case ShaderStage::Geometry: return VK_PIPELINE_STAGE_2_GEOMETRY_SHADER_BIT;
+    default: return VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+  }
+}
+
+const UnorderedAccessView* UavAt(const PipelineState& s, ShaderStage stage, uint32_t reg) {
+  return stage == ShaderStage::Compute ? s.computeUavs[reg].get() : s.pixelUavs[reg].get();
+}
+
+bool Overlaps(uint32_t a0, uint32_t an, uint32_t b0, uint32_t bn) { return a0 < b0 + bn && b0 < a0 + an; }
+
+}  // namespace
+
+VkImageLayout DsvLayout(const VkViewObj& v) {
+  if (v.depthReadOnly && v.stencilReadOnly) return VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL;
+  if (v.depthReadOnly) return VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_STENCIL_ATTACHMENT_OPTIMAL;
+  if (v.stencilReadOnly && (v.texture->aspects & VK_IMAGE_ASPECT_STENCIL_BIT)) return VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_STENCIL_READ_ONLY_OPTIMAL;
+  return VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
+}
+
+VkImageLayout VulkanContext::SrvLayout(const PipelineState& s, const VkViewObj& v) const {
+  if (!(v.aspect & (VK_IMAGE_ASPECT_DEPTH_BIT | VK_IMAGE_ASPECT_STENCIL_BIT))) return VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+  // Sampling a depth texture that is also the (read-only) depth target: one layout serves both.
+  if (s.depthStencil) {
+    const VkViewObj& d = ViewOf(s.depthStencil.get());
+    if (d.texture == v.texture && Overlaps(d.firstMip, d.mipCount, v.firstMip, v.mipCount) &&
+        Overlaps(d.firstLayer, d.layerCount, v.firstLayer, v.layerCount))
+      return DsvLayout(d);
+  }
+  return VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL;
+}
+
+void VulkanContext::CheckSampling(const PipelineState& s, ShaderStage stage, const VkShaderObj& sh, const char* call) {
+  const StageBindings& b = s.stage(stage);
+  for (const SampledPair& p : sh.sampledPairs) {
+    const ShaderResourceView* srv = b.shaderResources[p.textureReg].get();
+    const SamplerState* smp = b.samplers[p.samplerReg].get();
+    if (!srv || !smp) continue;
+    const VkViewObj& v = ViewOf(srv);
+    if (!v.texture) continue;
+    VkFormatFeatureFlags2 f = dev_->OptimalFeatures(v.format);
+    const SAMPLER_DESC& sd = smp->GetDesc();
+    std::string slot = std::string(ShaderStagePrefix(stage)) + " slot t" + std::to_string(p.textureReg);
+    if (p.compared && !(f & VK_FORMAT_FEATURE_2_SAMPLED_IMAGE_DEPTH_COMPARISON_BIT))
+      Throw(ErrorId::NOT_SUPPORTED, call, DescribeObject(srv),
+            "the shader compares (SampleCmp/GatherCmp) the texture at " + slot + ", but this device compares only depth textures; create it with a depth "
+            "family (e.g. R32_TYPELESS with BIND_DEPTH_STENCIL) and read it through its depth view format");
+    bool linear = !FilterIsComparison(sd.Filter) && FilterReduction(sd.Filter) == 0 &&
+                  (FilterIsAnisotropic(sd.Filter) || FilterMinLinear(sd.Filter) || FilterMagLinear(sd.Filter));
+    if (p.filtered && linear && !(f & VK_FORMAT_FEATURE_2_SAMPLED_IMAGE_FILTER_LINEAR_BIT))
+      Throw(ErrorId::NOT_SUPPORTED, call, DescribeObject(srv),
+            "the shader samples the texture at " + slot + " with a linear filter (" + DescribeObject(smp) + "), which this device does not support for " +
+                std::string(FormatName(srv->ViewFormat())) + " views of this texture; use a point filter, Load or Gather");
+  }
+}
+
+void VulkanContext::TrackStageResources(const PipelineState& s, ShaderStage stage, const VkShaderObj& sh) {
+  const StageBindings& b = s.stage(stage);
+  VkPipelineStageFlags2 bit = StageBit(stage);
+  uint64_t serial = dev_->recordingSerial;
+  for (const ShaderBinding& sb : sh.bindings) {
+    switch (sb.cls) {
+      case RegisterClass::ConstantBuffer: {
+        VkBufferObj& buf = BufferOf(b.constantBuffers[sb.reg].get());
+        if (const CBufferRepack* rp = sh.RepackFor(sb.reg)) repacked_[size_t(stage)][sb.reg] = RepackConstants(buf, *rp, sh.uid * 16 + sb.reg, bit);
+        else UseBuffer(buf, access::ShaderRead(bit, VK_ACCESS_2_UNIFORM_READ_BIT));
+        break;
+      }
+      case RegisterClass::ShaderResource: {
+        VkViewObj& v = ViewOf(b.shaderResources[sb.reg].get());
+        if (sb.type == VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE) UseView(v, access::ShaderRead(bit, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, SrvLayout(s, v)));
+        else if (sb.type == VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER) UseView(v, access::ShaderRead(bit, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT));
+        else UseView(v, access::ShaderRead(bit, VK_ACCESS_2_SHADER_STORAGE_READ_BIT));
+        break;
+      }
+      case RegisterClass::Sampler:
+        b.samplers[sb.reg]->BackendAs<VkSamplerObj>().lastUse = serial;
+        break;
+      case RegisterClass::UnorderedAccess: {
+        VkViewObj& v = ViewOf(UavAt(s, stage, sb.reg));
+        if (sb.resType == ShaderResourceType::UavCounter) {
+          UseRange(v.counterState, access::ShaderWrite(bit));
+          v.lastUse = serial;
+        } else {
+          UseView(v, access::ShaderWrite(bit, VK_IMAGE_LAYOUT_GENERAL));
+        }
+        break;
+      }
+    }
+  }
+}
+
+void VulkanContext::ResolveDescriptors(const PipelineState& s, ShaderStage stage, const VkShaderObj& sh, std::vector<DescriptorItem>& out,
+                                       const char* call) {
+  const StageBindings& b = s.stage(stage);
+  out.clear();
+  for (const ShaderBinding& sb : sh.bindings) {
+    DescriptorItem it;
+    it.binding = sb.binding;
+    it.type = sb.type;
+    switch (sb.cls) {
+      case RegisterClass::ConstantBuffer: {
+        const VkBufferObj& buf = BufferOf(b.constantBuffers[sb.reg].get());
+        if (sh.RepackFor(sb.reg)) {
+          const RepackedConstants& rc = repacked_[size_t(stage)][sb.reg];
+          it.buffer = rc.buffer;
+          it.offset = rc.offset;
+          it.range = rc.size;
+        } else {
+          it.buffer = buf.range.buffer;
+          it.offset = buf.range.offset;
+          it.range = buf.desc.ByteWidth;
+        }
+        break;
+      }
+      case RegisterClass::ShaderResource: {
+        VkViewObj& v = ViewOf(b.shaderResources[sb.reg].get());
+        if (sb.type == VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE) {
+          it.view = v.view;
+          it.layout = SrvLayout(s, v);
+        } else if (sb.type == VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER) {
+          it.texel = v.TexelView(call);
+        } else {
+          it.buffer = v.buffer->range.buffer;
+          it.offset = v.buffer->range.offset + v.byteOffset;
+          it.range = v.byteSize;
+        }
+        break;
+      }
+      case RegisterClass::Sampler:
+        it.sampler = b.samplers[sb.reg]->BackendAs<VkSamplerObj>().sampler;
+        break;
+      case RegisterClass::UnorderedAccess: {
+        const UnorderedAccessView* uav = UavAt(s, stage, sb.reg);
+        VkViewObj& v = ViewOf(uav);
+        if (sb.resType == ShaderResourceType::UavCounter) {
+          if (!v.counter)
+            Throw(ErrorId::RESOURCE_TYPE_MISMATCH, call, DescribeObject(uav), "the shader uses the hidden counter of u" + std::to_string(sb.reg) +
+                                                                                  " but the view was created without BUFFER_UAV_FLAG_APPEND or _COUNTER");
+          it.buffer = v.counter.buffer;
+          it.offset = v.counter.offset;
+          it.range = 4;
+        } else if (sb.type == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE) {
+          it.view = v.view;
+          it.layout = VK_IMAGE_LAYOUT_GENERAL;
+        } else if (sb.type == VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER) {
+          it.texel = v.TexelView(call);
+        } else {
+          it.buffer = v.buffer->range.buffer;
+          it.offset = v.buffer->range.offset + v.byteOffset;
+          it.range = v.byteSize;
+        }
+        break;
+      }
+    }
+    out.push_back(it);
+  }
+}
+
+bool VulkanContext::BindDescriptors(StageDescriptors& sd, VkDescriptorSetLayout layout, std::vector<DescriptorItem>& items,
+                                    VkPipelineBindPoint point, VkPipelineLayout pipeLayout, uint32_t setIndex) {
+  if (items.empty()) return false;
+  bool rewrite = !(sd.set && sd.layout == layout && sd.items == items);
+  if (rewrite) {
+    VkDescriptorSet set = AllocateSet(layout);
+    std::vector<VkWriteDescriptorSet> writes(items.size());
+    std::vector<VkDescriptorImageInfo> images(items.size());
+    std::vector<VkDescriptorBufferInfo> buffers(items.size());
+    for (size_t i = 0; i < items.size(); ++i) {
+      const DescriptorItem& it = items[i];
+      VkWriteDescriptorSet& w = writes[i];
+      w = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+      w.dstSet = set;
+      w.dstBinding = it.binding;
+      w.descriptorCount = 1;
+      w.descriptorType = it.type;
+      switch (it.type) {
+        case VK_DESCRIPTOR_TYPE_SAMPLER:
+          images[i] = {it.sampler, VK_NULL_HANDLE, VK_IMAGE_LAYOUT_UNDEFINED};
+          w.pImageInfo = &images[i];
+          break;
+        case VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE:
+        case VK_DESCRIPTOR_TYPE_STORAGE_IMAGE:
+          images[i] = {VK_NULL_HANDLE, it.view, it.layout};
+          w.pImageInfo = &images[i];
+          break;
+        case VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER:
+        case VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER:
+          w.pTexelBufferView = &items[i].texel;
+          break;
+        default:
+          buffers[i] = {it.buffer, it.offset, it.range};
+          w.pBufferInfo = &buffers[i];
+          break;
+      }
+    }
+    vkUpdateDescriptorSets(dev_->device, uint32_t(writes.size()), writes.data(), 0, nullptr);
+    sd.set = set;
+    sd.layout = layout;
+    sd.items.swap(items);
+  }
+  if (rewrite || sd.boundWith != pipeLayout) {
+    vkCmdBindDescriptorSets(cur_->cmd, point, pipeLayout, setIndex, 1, &sd.set, 0, nullptr);
+    sd.boundWith = pipeLayout;
+  }
+  return rewrite;
+}
+
+}  // namespace sp::vk
