@@ -1,0 +1,251 @@
+// Private interface of the OpenGL 4.5 backend (EGL, headless, direct state access).
+//
+// Ownership: GLDevice owns the EGL context; every core object carries one of the Backend
+// structs below, which frees its GL names in its destructor (the device makes its context
+// current first, so objects can be released from any point in the program's flow on the device's
+// thread). GLContext owns the caches that refer to GL names (framebuffers, program pipelines,
+// bound units); deleting a name tells the context to forget it, because GL reuses names.
+#pragma once
+#include <EGL/egl.h>
+#include <EGL/eglext.h>
+#include <GL/glcorearb.h>
+
+#include <array>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <sp/rhi/context.h>
+
+namespace sp::gl {
+
+class GLDevice;
+class GLContext;
+
+// ---------------------------------------------------------------------------------------------
+// Formats (gl-formats.cpp)
+
+struct GLFormat {
+  GLenum internal = 0;     // sized internal format (storage, views, images, texture buffers)
+  GLenum extFormat = 0;    // client format/type that reproduces D3D's memory layout byte for byte
+  GLenum extType = 0;
+  bool integer = false;    // *_INTEGER client formats, integer samplers
+  bool depth = false, stencil = false;
+  // Vertex attribute (size 0: not a vertex format).
+  GLint attribSize = 0;
+  GLenum attribType = 0;
+  bool attribNormalized = false;
+  bool attribInteger = false;
+  bool textureBuffer = false;  // in GL's texture-buffer format table
+  bool image = false;          // in GL's image load/store format table
+};
+
+// Format used for a FORMAT in views and transfers. Depth-family formats map to their depth
+// storage format; TYPELESS colour formats to the typed member used for storage.
+const GLFormat& FormatOf(FORMAT format);
+// The format a texture is stored in: depth formats for BIND_DEPTH_STENCIL textures (and the
+// packed depth-stencil families, which have no colour equivalent), otherwise FormatOf.
+const GLFormat& StorageFormatOf(const TextureShape& shape);
+bool IsDepthStorage(const TextureShape& shape);
+
+// ---------------------------------------------------------------------------------------------
+// Backend objects
+
+// A CPU-visible GL buffer (staging resources): persistently mapped, coherent, with a fence on
+// the last GPU command that used it so Map waits exactly as long as needed.
+struct GLStagingMemory {
+  GLuint buffer = 0;
+  uint8_t* ptr = nullptr;
+  GLsync fence = nullptr;
+  void Create(GLsizeiptr size, const void* init);
+  void Destroy(GLDevice& dev);
+  void MarkGpuUse();          // after a GPU command that reads or writes the buffer
+  bool Wait(bool doNotWait);  // false: still busy and doNotWait
+};
+
+struct GLBuffer : detail::BackendObject {
+  GLDevice* dev = nullptr;
+  GLuint name = 0;
+  uint32_t size = 0;
+  USAGE usage = USAGE_DEFAULT;
+  bool constant = false;
+  // Constant buffers keep the D3D-packed contents on the CPU for the std140 repack path.
+  std::vector<uint8_t> shadow;
+  uint64_t version = 1;  // bumped on every write to a constant buffer
+  GLStagingMemory staging;  // USAGE_STAGING: `name` is staging.buffer
+  bool mappedGL = false;    // USAGE_DYNAMIC non-constant buffer mapped through GL
+  ~GLBuffer() override;
+};
+
+struct SubresourceLayout {
+  uint64_t offset = 0;
+  uint32_t rowPitch = 0, depthPitch = 0;
+  uint32_t width = 1, height = 1, depth = 1;
+};
+
+struct GLTexture : detail::BackendObject {
+  GLDevice* dev = nullptr;
+  TextureShape shape;
+  GLuint name = 0;  // 0 for staging textures
+  GLenum target = 0;
+  const GLFormat* storage = nullptr;
+  // USAGE_STAGING: a GL buffer laid out as D3D maps the texture.
+  GLStagingMemory staging;
+  std::vector<SubresourceLayout> subresources;
+  // D24S8 staging subresources holding GL's packing (depth high, stencil low) after a GPU copy;
+  // converted to D3D's packing before the CPU or another copy sees them.
+  std::vector<uint8_t> glPacked;
+  // USAGE_DYNAMIC: CPU memory behind Map(WRITE_DISCARD), uploaded on Unmap.
+  std::vector<std::vector<uint8_t>> dynamicData;
+  ~GLTexture() override;
+  bool isStaging() const { return shape.usage == USAGE_STAGING; }
+  // Whether the storage has layers (1D, 2D and 2D multisample arrays; cube maps are 2D arrays).
+  bool arrayed() const;
+};
+
+struct GLView : detail::BackendObject {
+  enum class Kind : uint8_t { Texture, TypedBuffer, StorageBuffer };
+  GLDevice* dev = nullptr;
+  Kind kind = Kind::Texture;
+  GLuint texture = 0;      // the storage texture, a texture view, or a buffer texture
+  bool ownsTexture = false;
+  GLenum target = 0;
+  const GLFormat* format = nullptr;  // the view's format (that of `texture` too)
+  // Framebuffer attachment (RTV/DSV) or image binding (UAV).
+  GLint level = 0;
+  GLint layer = -1;  // -1: whole texture (layered when it has layers)
+  bool layered = false;
+  // Buffer views: the byte range (bound as a storage block, or behind the buffer texture).
+  GLuint buffer = 0;
+  GLintptr offset = 0;
+  GLsizeiptr size = 0;
+  GLuint counter = 0;  // hidden counter of append/counter UAVs
+  ~GLView() override;
+};
+
+struct GLSampler : detail::BackendObject {
+  GLDevice* dev = nullptr;
+  GLuint name = 0;
+  ~GLSampler() override;
+};
+
+struct GLShader : detail::BackendObject {
+  GLDevice* dev = nullptr;
+  const Shader* owner = nullptr;
+  GLuint program = 0;
+  GLuint dualSourceProgram = 0;  // pixel shaders writing SV_Target1, compiled on first use
+  GLuint computePipeline = 0;
+  bool writesTarget1 = false;
+  ~GLShader() override;
+};
+
+struct GLQuerySegment;  // gl-query.cpp
+struct GLQuery : detail::BackendObject {
+  GLDevice* dev = nullptr;
+  QUERY type = QUERY_EVENT;
+  GLuint name = 0;  // TIMESTAMP
+  GLsync fence = nullptr;  // EVENT, TIMESTAMP_DISJOINT
+  bool ended = false;
+  std::vector<std::shared_ptr<GLQuerySegment>> segments;  // OCCLUSION
+  ~GLQuery() override;
+};
+
+// ---------------------------------------------------------------------------------------------
+// The device
+
+class GLDevice final : public Device {
+ public:
+  explicit GLDevice(const DeviceDesc& desc);
+  ~GLDevice() override;
+
+  void MakeCurrent() const;
+  GLContext* context() const { return context_; }
+  void DetachContext() { context_ = nullptr; }
+
+  // Names are released through these so the context's caches forget them.
+  void DeleteTexture(GLuint name);
+  void DeleteBuffer(GLuint name);
+  void DeleteSampler(GLuint name);
+  void DeleteProgram(GLuint name);
+  void DeleteProgramPipeline(GLuint name);
+
+  GLint ssboAlignment = 16, uboAlignment = 256, tboAlignment = 16;
+  bool hasFilterMinmax = false;
+  PFNGLPOLYGONOFFSETCLAMPEXTPROC polygonOffsetClamp = nullptr;
+  const DeviceInfo& info() const { return info_; }
+  bool suppressDebugMessages = false;  // while compiling: failures are reported as sp::Error
+  void OnDebugMessage(GLenum source, GLenum type, GLuint id, GLenum severity, const char* message);
+
+ protected:
+  std::unique_ptr<detail::BackendObject> CreateBufferBackend(Buffer& buffer, const SUBRESOURCE_DATA* init) override;
+  std::unique_ptr<detail::BackendObject> CreateTextureBackend(Texture& texture, const SUBRESOURCE_DATA* init) override;
+  std::unique_ptr<detail::BackendObject> CreateViewBackend(View& view) override;
+  std::unique_ptr<detail::BackendObject> CreateSamplerBackend(SamplerState& sampler) override;
+  std::unique_ptr<detail::BackendObject> CreateShaderBackend(Shader& shader) override;
+  std::unique_ptr<detail::BackendObject> CreateQueryBackend(Query& query) override;
+  uint32_t FormatSupportBackend(FORMAT format) const override;
+  uint32_t MaxSampleCountBackend(FORMAT format) const override;
+  bool SampleCountSupportedBackend(FORMAT format, uint32_t count) const override;
+
+ private:
+  void Init(const DeviceDesc& desc);
+  void InitFormatSupport();
+  std::vector<GLint> SampleCounts(GLenum internal) const;
+
+  EGLDisplay display_ = EGL_NO_DISPLAY;
+  EGLContext egl_ = EGL_NO_CONTEXT;
+  GLContext* context_ = nullptr;
+  std::array<uint32_t, 128> support_{};
+  std::array<std::vector<GLint>, 128> samples_{};
+};
+
+// Entry points of the per-area files, called by GLDevice.
+std::unique_ptr<detail::BackendObject> CreateGLBuffer(GLDevice& dev, Buffer& buffer, const SUBRESOURCE_DATA* init);
+std::unique_ptr<detail::BackendObject> CreateGLTexture(GLDevice& dev, Texture& texture, const SUBRESOURCE_DATA* init);
+std::unique_ptr<detail::BackendObject> CreateGLView(GLDevice& dev, View& view);
+std::unique_ptr<detail::BackendObject> CreateGLSampler(GLDevice& dev, SamplerState& sampler);
+std::unique_ptr<detail::BackendObject> CreateGLShader(GLDevice& dev, Shader& shader);
+std::unique_ptr<detail::BackendObject> CreateGLQuery(GLDevice& dev, Query& query);
+std::unique_ptr<detail::ContextBackend> CreateGLContext(GLDevice& dev);
+
+// A program for a pixel shader whose SV_Target1 is the second source of dual-source blending.
+GLuint DualSourceProgram(GLDevice& dev, GLShader& shader);
+
+// ---------------------------------------------------------------------------------------------
+// Helpers shared by the transfer code
+
+// The GL coordinates of one subresource: level, and the z (or y for 1D arrays) of its slice.
+struct GLSubresource {
+  GLint level = 0;
+  GLint slice = 0;  // array layer (0 for non-arrays); 3D textures use the box's z instead
+};
+GLSubresource SubresourceOf(const TextureShape& shape, uint32_t subresource);
+
+// A D3D region (x, y, z or array layer, extent) in the coordinates GL uses for a target: 1D
+// arrays keep layers in y, 2D arrays and cubes in z.
+struct GLRegion {
+  GLint x = 0, y = 0, z = 0;
+  GLsizei w = 1, h = 1, d = 1;
+};
+GLRegion RegionOf(GLenum target, uint32_t x, uint32_t y, uint32_t z, uint32_t w, uint32_t h, uint32_t d);
+
+// D24S8 packing conversions, in place, for `count` texels.
+void D24S8ToD3D(uint32_t* texels, size_t count);
+void D24S8ToGL(uint32_t* texels, size_t count);
+
+// Uploads D3D-laid-out rows (rowPitch/depthPitch) into a region of a texture, from client memory
+// or, when `pbo` is non-zero, from that buffer at byte offset `data`.
+void UploadRegion(GLTexture& t, uint32_t subresource, uint32_t x, uint32_t y, uint32_t z, uint32_t w, uint32_t h, uint32_t d,
+                  const void* data, uint32_t rowPitch, uint32_t depthPitch, GLuint pbo = 0);
+
+inline GLTexture& GL(const Texture* t) { return t->BackendAs<GLTexture>(); }
+inline GLBuffer& GL(const Buffer* b) { return b->BackendAs<GLBuffer>(); }
+inline GLView& GL(const View* v) { return v->BackendAs<GLView>(); }
+
+GLenum CompareFunc(COMPARISON_FUNC f);
+
+[[noreturn]] void ThrowError(ErrorId id, const std::string& call, const std::string& object, const std::string& detail);
+
+}  // namespace sp::gl
