@@ -29,5 +29,6 @@ void WritePng(const std::string& path, uint32_t w, uint32_t h, const uint8_t* rg
 int RunRender(const Args& args);
 int RunHlslc(const std::vector<std::string>& argv);
 int RunDemo(const Args& args);
+int RunConformance(const Args& args);
 
 }  // namespace sp::cli

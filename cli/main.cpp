@@ -17,6 +17,8 @@ void Help() {
       "          renders one frame of a scene with a shadow technique\n"
       "  demo    [--out dir] [--size WxH] [--technique NAME] [--scene NAME] [--param k=v]...\n"
       "          renders on both backends with validation on, writes the pictures, a diff and summary.md\n"
+      "  conformance [--backend vulkan|gl|both] [--out dir] [--filter text] [--verbose]\n"
+      "          runs the D3D11 conformance probes; prints the feature x backend table, writes Markdown and JSON\n"
       "  hlslc   file.hlsl -T vs_5_0|ps_5_0|cs_5_0 [-E entry] [-D NAME[=VALUE]] [-I dir] [-Fo out]\n"
       "          compiles HLSL like fxc: writes out.spv, out.glsl and out.json (reflection)\n");
 }
@@ -35,6 +37,7 @@ int main(int argc, char** argv) {
     if (cmd == "render") return sp::cli::RunRender(sp::cli::Args(rest, {"validate"}));
     if (cmd == "demo") return sp::cli::RunDemo(sp::cli::Args(rest));
     if (cmd == "hlslc") return sp::cli::RunHlslc(rest);
+    if (cmd == "conformance") return sp::cli::RunConformance(sp::cli::Args(rest, {"verbose"}));
     std::fprintf(stderr, "shadowport: unknown command '%s'\n", cmd.c_str());
     Help();
     return 2;

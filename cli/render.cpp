@@ -14,7 +14,7 @@ RenderResult RenderOnce(const RenderJob& job) {
   dd.backend = job.backend;
   dd.debug = job.debug;
   Ref<Device> device = CreateDevice(dd);
-  scene::Scene scene = scene::MakeBuiltinScene(job.scene);
+  scene::Scene scene = scene::LoadScene(job.scene);
   std::unique_ptr<tech::Technique> technique = tech::CreateTechnique(job.technique);
   tech::ParamValues params = tech::ParamValues::Parse(job.technique, technique->Params(), job.params);
   technique->Configure(*device, params);

@@ -6,6 +6,8 @@
 #include <cstring>
 #include <filesystem>
 #include <sp/rhi/rhi.h>
+
+#include "gpu-util.h"
 #include <string>
 #include <vector>
 
@@ -44,21 +46,12 @@ ShaderBytecode CompileShaderFile(const std::string& relativePath, const std::str
 std::filesystem::path ShaderDir();
 std::filesystem::path TestOutputDir();  // build/test-output/<suite>/<test>, created on demand
 
-// Reads back one subresource of a texture through a staging copy (CopySubresourceRegion + Map
-// READ), as a D3D11 program would. Rows are tightly packed.
-std::vector<uint8_t> ReadTexture(Device& dev, DeviceContext& ctx, Texture2D* tex, uint32_t subresource = 0);
-std::vector<uint8_t> ReadBuffer(Device& dev, DeviceContext& ctx, Buffer* buf);
-template <class T>
-std::vector<T> ReadAs(const std::vector<uint8_t>& bytes) {
-  std::vector<T> v(bytes.size() / sizeof(T));
-  std::memcpy(v.data(), bytes.data(), v.size() * sizeof(T));
-  return v;
-}
-
-// Convenience creators for tests.
-Ref<Buffer> MakeBuffer(Device& dev, uint32_t bind, const void* data, uint32_t size, uint32_t misc = 0, uint32_t stride = 0);
-Ref<Texture2D> MakeTexture2D(Device& dev, uint32_t w, uint32_t h, FORMAT fmt, uint32_t bind, const void* data = nullptr,
-                             uint32_t mips = 1, uint32_t arraySize = 1, uint32_t samples = 1, uint32_t misc = 0);
+// Readback and creation helpers (eval/conformance/gpu-util.h), shared with the conformance probes.
+using gpu::MakeBuffer;
+using gpu::MakeTexture2D;
+using gpu::ReadAs;
+using gpu::ReadBuffer;
+using gpu::ReadTexture;
 
 // Writes an RGBA8 PNG (for diffs and failure artefacts).
 void WritePng(const std::filesystem::path& path, uint32_t w, uint32_t h, const uint8_t* rgba);
