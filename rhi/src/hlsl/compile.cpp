@@ -260,6 +260,7 @@ ShaderBytecode CompileSource(std::string_view sourceView, const std::string& fil
   Includer includer(fs::path(fileName).parent_path(), opt.includeDirs);
   std::vector<uint32_t> spirv = RunGlslang(source, fileName, opt, stage, entry, includer);
   spirv = Legalize(spirv, name);
+  LowerDotAndMatrixProducts(spirv);
   ConstOffsetsFromConstants(spirv);
   RemapCounterBindings(spirv, vkbind::kUnorderedAccess, vkbind::kUavCounter);
   ShiftUnshiftedTextureBindings(spirv, vkbind::kShaderResource);

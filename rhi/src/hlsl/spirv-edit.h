@@ -33,4 +33,9 @@ void SetFormatOfReadImages(std::vector<uint32_t>& spirv);
 // Variables (by result id) of storage images that are only written (no read, no atomics).
 std::set<uint32_t> WriteOnlyImageVariables(const std::vector<uint32_t>& spirv);
 
+// Rewrites OpDot, matrix products, length, normalize and distance into explicit scalar and
+// component-wise multiplies and adds in a fixed order, so that the Vulkan and GL drivers compute
+// bit-identical results (see spirv-arith.cpp).
+void LowerDotAndMatrixProducts(std::vector<uint32_t>& spirv);
+
 }  // namespace sp::hlsl
