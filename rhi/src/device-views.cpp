@@ -72,6 +72,39 @@ void CheckTextureFormat(const ViewCheck& c, const TextureShape& s, FORMAT viewFm
                                                                    : " (typed textures are viewed in their own format; create it TYPELESS to reinterpret)"));
 }
 
+// The subresources of a render-target, depth-stencil or unordered-access view: one mip, a range
+// of slices (array slices, or W slices of a 3D texture). Checks the view's dimension against the
+// texture and the ranges against its size.
+enum class OutputKind { Tex1D, Tex1DArray, Tex2D, Tex2DArray, Tex2DMS, Tex2DMSArray, Tex3D };
+
+ViewRange OutputRange(const ViewCheck& c, const TextureShape& s, OutputKind kind, const char* dimension, uint32_t mip,
+                      uint32_t* firstSlice = nullptr, uint32_t* sliceCount = nullptr) {
+  bool ms = s.sampleCount > 1;
+  std::string need = std::string(dimension) + " needs a ";
+  switch (kind) {
+    case OutputKind::Tex1D:
+    case OutputKind::Tex1DArray: c.dimension(Is1D(s), need + "Texture1D"); break;
+    case OutputKind::Tex2D:
+    case OutputKind::Tex2DArray: c.dimension(Is2D(s) && !ms, need + "single-sampled Texture2D"); break;
+    case OutputKind::Tex2DMS:
+    case OutputKind::Tex2DMSArray: c.dimension(Is2D(s) && ms, need + "multisampled Texture2D"); break;
+    case OutputKind::Tex3D: c.dimension(Is3D(s), need + "Texture3D"); break;
+  }
+  ViewRange r;
+  uint32_t one = 1;
+  if (kind != OutputKind::Tex2DMS && kind != OutputKind::Tex2DMSArray) {
+    c.mips(s, mip, one);
+    r.firstMip = mip;
+  }
+  if (firstSlice) {
+    if (kind == OutputKind::Tex3D) c.slices(s.mipDepth(mip), *firstSlice, *sliceCount, "depth slices");
+    else c.slices(s.arraySize, *firstSlice, *sliceCount);
+    r.firstSlice = *firstSlice;
+    r.sliceCount = *sliceCount;
+  }
+  return r;
+}
+
 }  // namespace
 
 Ref<ShaderResourceView> Device::CreateShaderResourceView(Resource* resource, const SHADER_RESOURCE_VIEW_DESC* pDesc) {
@@ -239,49 +272,26 @@ Ref<RenderTargetView> Device::CreateRenderTargetView(Resource* resource, const R
   if (!(FormatSupportBackend(d.Format) & FORMAT_SUPPORT_RENDER_TARGET))
     Fail(ErrorId::FORMAT_UNSUPPORTED, c.call, c.obj, std::string(FormatName(d.Format)) + " cannot be a render target on this device");
   ViewRange r;
-  uint32_t one = 1;
-  bool ms = s.sampleCount > 1;
+  using K = OutputKind;
   switch (d.ViewDimension) {
-    case RTV_DIMENSION_TEXTURE1D:
-      c.dimension(Is1D(s), "RTV_DIMENSION_TEXTURE1D needs a Texture1D");
-      c.mips(s, d.Texture1D.MipSlice, one);
-      r.firstMip = d.Texture1D.MipSlice;
-      break;
+    case RTV_DIMENSION_TEXTURE1D: r = OutputRange(c, s, K::Tex1D, "RTV_DIMENSION_TEXTURE1D", d.Texture1D.MipSlice); break;
     case RTV_DIMENSION_TEXTURE1DARRAY:
-      c.dimension(Is1D(s), "RTV_DIMENSION_TEXTURE1DARRAY needs a Texture1D");
-      c.mips(s, d.Texture1DArray.MipSlice, one);
-      c.slices(s.arraySize, d.Texture1DArray.FirstArraySlice, d.Texture1DArray.ArraySize);
-      r.firstMip = d.Texture1DArray.MipSlice, r.firstSlice = d.Texture1DArray.FirstArraySlice, r.sliceCount = d.Texture1DArray.ArraySize;
+      r = OutputRange(c, s, K::Tex1DArray, "RTV_DIMENSION_TEXTURE1DARRAY", d.Texture1DArray.MipSlice, &d.Texture1DArray.FirstArraySlice, &d.Texture1DArray.ArraySize);
       break;
-    case RTV_DIMENSION_TEXTURE2D:
-      c.dimension(Is2D(s) && !ms, "RTV_DIMENSION_TEXTURE2D needs a single-sampled Texture2D");
-      c.mips(s, d.Texture2D.MipSlice, one);
-      r.firstMip = d.Texture2D.MipSlice;
-      break;
+    case RTV_DIMENSION_TEXTURE2D: r = OutputRange(c, s, K::Tex2D, "RTV_DIMENSION_TEXTURE2D", d.Texture2D.MipSlice); break;
     case RTV_DIMENSION_TEXTURE2DARRAY:
-      c.dimension(Is2D(s) && !ms, "RTV_DIMENSION_TEXTURE2DARRAY needs a single-sampled Texture2D");
-      c.mips(s, d.Texture2DArray.MipSlice, one);
-      c.slices(s.arraySize, d.Texture2DArray.FirstArraySlice, d.Texture2DArray.ArraySize);
-      r.firstMip = d.Texture2DArray.MipSlice, r.firstSlice = d.Texture2DArray.FirstArraySlice, r.sliceCount = d.Texture2DArray.ArraySize;
+      r = OutputRange(c, s, K::Tex2DArray, "RTV_DIMENSION_TEXTURE2DARRAY", d.Texture2DArray.MipSlice, &d.Texture2DArray.FirstArraySlice, &d.Texture2DArray.ArraySize);
       break;
-    case RTV_DIMENSION_TEXTURE2DMS:
-      c.dimension(Is2D(s) && ms, "RTV_DIMENSION_TEXTURE2DMS needs a multisampled Texture2D");
-      break;
+    case RTV_DIMENSION_TEXTURE2DMS: r = OutputRange(c, s, K::Tex2DMS, "RTV_DIMENSION_TEXTURE2DMS", 0); break;
     case RTV_DIMENSION_TEXTURE2DMSARRAY:
-      c.dimension(Is2D(s) && ms, "RTV_DIMENSION_TEXTURE2DMSARRAY needs a multisampled Texture2D");
-      c.slices(s.arraySize, d.Texture2DMSArray.FirstArraySlice, d.Texture2DMSArray.ArraySize);
-      r.firstSlice = d.Texture2DMSArray.FirstArraySlice, r.sliceCount = d.Texture2DMSArray.ArraySize;
+      r = OutputRange(c, s, K::Tex2DMSArray, "RTV_DIMENSION_TEXTURE2DMSARRAY", 0, &d.Texture2DMSArray.FirstArraySlice, &d.Texture2DMSArray.ArraySize);
       break;
     case RTV_DIMENSION_TEXTURE3D:
-      c.dimension(Is3D(s), "RTV_DIMENSION_TEXTURE3D needs a Texture3D");
-      c.mips(s, d.Texture3D.MipSlice, one);
-      c.slices(s.mipDepth(d.Texture3D.MipSlice), d.Texture3D.FirstWSlice, d.Texture3D.WSize, "depth slices");
-      r.firstMip = d.Texture3D.MipSlice, r.firstSlice = d.Texture3D.FirstWSlice, r.sliceCount = d.Texture3D.WSize;
+      r = OutputRange(c, s, K::Tex3D, "RTV_DIMENSION_TEXTURE3D", d.Texture3D.MipSlice, &d.Texture3D.FirstWSlice, &d.Texture3D.WSize);
       break;
     default:
       c.dimension(false, "ViewDimension " + std::to_string(uint32_t(d.ViewDimension)) + " does not fit a texture");
   }
-  r.mipCount = 1;
   Ref<RenderTargetView> v(new RenderTargetView(this, std::static_pointer_cast<Resource>(resource->shared_from_this()), d, r));
   v->backend_ = CreateViewBackend(*v);
   return v;
@@ -323,38 +333,19 @@ Ref<DepthStencilView> Device::CreateDepthStencilView(Resource* resource, const D
   if ((d.Flags & DSV_READ_ONLY_STENCIL) && !fi.stencilBits)
     Fail(ErrorId::INVALID_DESC, c.call, c.obj, "DSV_READ_ONLY_STENCIL on a format without stencil");
   ViewRange r;
-  uint32_t one = 1;
-  bool ms = s.sampleCount > 1;
+  using K = OutputKind;
   switch (d.ViewDimension) {
-    case DSV_DIMENSION_TEXTURE1D:
-      c.dimension(Is1D(s), "DSV_DIMENSION_TEXTURE1D needs a Texture1D");
-      c.mips(s, d.Texture1D.MipSlice, one);
-      r.firstMip = d.Texture1D.MipSlice;
-      break;
+    case DSV_DIMENSION_TEXTURE1D: r = OutputRange(c, s, K::Tex1D, "DSV_DIMENSION_TEXTURE1D", d.Texture1D.MipSlice); break;
     case DSV_DIMENSION_TEXTURE1DARRAY:
-      c.dimension(Is1D(s), "DSV_DIMENSION_TEXTURE1DARRAY needs a Texture1D");
-      c.mips(s, d.Texture1DArray.MipSlice, one);
-      c.slices(s.arraySize, d.Texture1DArray.FirstArraySlice, d.Texture1DArray.ArraySize);
-      r.firstMip = d.Texture1DArray.MipSlice, r.firstSlice = d.Texture1DArray.FirstArraySlice, r.sliceCount = d.Texture1DArray.ArraySize;
+      r = OutputRange(c, s, K::Tex1DArray, "DSV_DIMENSION_TEXTURE1DARRAY", d.Texture1DArray.MipSlice, &d.Texture1DArray.FirstArraySlice, &d.Texture1DArray.ArraySize);
       break;
-    case DSV_DIMENSION_TEXTURE2D:
-      c.dimension(Is2D(s) && !ms, "DSV_DIMENSION_TEXTURE2D needs a single-sampled Texture2D");
-      c.mips(s, d.Texture2D.MipSlice, one);
-      r.firstMip = d.Texture2D.MipSlice;
-      break;
+    case DSV_DIMENSION_TEXTURE2D: r = OutputRange(c, s, K::Tex2D, "DSV_DIMENSION_TEXTURE2D", d.Texture2D.MipSlice); break;
     case DSV_DIMENSION_TEXTURE2DARRAY:
-      c.dimension(Is2D(s) && !ms, "DSV_DIMENSION_TEXTURE2DARRAY needs a single-sampled Texture2D");
-      c.mips(s, d.Texture2DArray.MipSlice, one);
-      c.slices(s.arraySize, d.Texture2DArray.FirstArraySlice, d.Texture2DArray.ArraySize);
-      r.firstMip = d.Texture2DArray.MipSlice, r.firstSlice = d.Texture2DArray.FirstArraySlice, r.sliceCount = d.Texture2DArray.ArraySize;
+      r = OutputRange(c, s, K::Tex2DArray, "DSV_DIMENSION_TEXTURE2DARRAY", d.Texture2DArray.MipSlice, &d.Texture2DArray.FirstArraySlice, &d.Texture2DArray.ArraySize);
       break;
-    case DSV_DIMENSION_TEXTURE2DMS:
-      c.dimension(Is2D(s) && ms, "DSV_DIMENSION_TEXTURE2DMS needs a multisampled Texture2D");
-      break;
+    case DSV_DIMENSION_TEXTURE2DMS: r = OutputRange(c, s, K::Tex2DMS, "DSV_DIMENSION_TEXTURE2DMS", 0); break;
     case DSV_DIMENSION_TEXTURE2DMSARRAY:
-      c.dimension(Is2D(s) && ms, "DSV_DIMENSION_TEXTURE2DMSARRAY needs a multisampled Texture2D");
-      c.slices(s.arraySize, d.Texture2DMSArray.FirstArraySlice, d.Texture2DMSArray.ArraySize);
-      r.firstSlice = d.Texture2DMSArray.FirstArraySlice, r.sliceCount = d.Texture2DMSArray.ArraySize;
+      r = OutputRange(c, s, K::Tex2DMSArray, "DSV_DIMENSION_TEXTURE2DMSARRAY", 0, &d.Texture2DMSArray.FirstArraySlice, &d.Texture2DMSArray.ArraySize);
       break;
     default:
       c.dimension(false, "ViewDimension " + std::to_string(uint32_t(d.ViewDimension)) + " does not fit a depth texture");
@@ -420,35 +411,18 @@ Ref<UnorderedAccessView> Device::CreateUnorderedAccessView(Resource* resource, c
     CheckTextureFormat(c, s, d.Format);
     if (!(FormatSupportBackend(d.Format) & FORMAT_SUPPORT_TYPED_UNORDERED_ACCESS_VIEW))
       Fail(ErrorId::FORMAT_UNSUPPORTED, c.call, c.obj, std::string(FormatName(d.Format)) + " cannot be a typed UAV on this device");
-    uint32_t one = 1;
+    using K = OutputKind;
     switch (d.ViewDimension) {
-      case UAV_DIMENSION_TEXTURE1D:
-        c.dimension(Is1D(s), "UAV_DIMENSION_TEXTURE1D needs a Texture1D");
-        c.mips(s, d.Texture1D.MipSlice, one);
-        r.firstMip = d.Texture1D.MipSlice;
-        break;
+      case UAV_DIMENSION_TEXTURE1D: r = OutputRange(c, s, K::Tex1D, "UAV_DIMENSION_TEXTURE1D", d.Texture1D.MipSlice); break;
       case UAV_DIMENSION_TEXTURE1DARRAY:
-        c.dimension(Is1D(s), "UAV_DIMENSION_TEXTURE1DARRAY needs a Texture1D");
-        c.mips(s, d.Texture1DArray.MipSlice, one);
-        c.slices(s.arraySize, d.Texture1DArray.FirstArraySlice, d.Texture1DArray.ArraySize);
-        r.firstMip = d.Texture1DArray.MipSlice, r.firstSlice = d.Texture1DArray.FirstArraySlice, r.sliceCount = d.Texture1DArray.ArraySize;
+        r = OutputRange(c, s, K::Tex1DArray, "UAV_DIMENSION_TEXTURE1DARRAY", d.Texture1DArray.MipSlice, &d.Texture1DArray.FirstArraySlice, &d.Texture1DArray.ArraySize);
         break;
-      case UAV_DIMENSION_TEXTURE2D:
-        c.dimension(Is2D(s), "UAV_DIMENSION_TEXTURE2D needs a Texture2D");
-        c.mips(s, d.Texture2D.MipSlice, one);
-        r.firstMip = d.Texture2D.MipSlice;
-        break;
+      case UAV_DIMENSION_TEXTURE2D: r = OutputRange(c, s, K::Tex2D, "UAV_DIMENSION_TEXTURE2D", d.Texture2D.MipSlice); break;
       case UAV_DIMENSION_TEXTURE2DARRAY:
-        c.dimension(Is2D(s), "UAV_DIMENSION_TEXTURE2DARRAY needs a Texture2D");
-        c.mips(s, d.Texture2DArray.MipSlice, one);
-        c.slices(s.arraySize, d.Texture2DArray.FirstArraySlice, d.Texture2DArray.ArraySize);
-        r.firstMip = d.Texture2DArray.MipSlice, r.firstSlice = d.Texture2DArray.FirstArraySlice, r.sliceCount = d.Texture2DArray.ArraySize;
+        r = OutputRange(c, s, K::Tex2DArray, "UAV_DIMENSION_TEXTURE2DARRAY", d.Texture2DArray.MipSlice, &d.Texture2DArray.FirstArraySlice, &d.Texture2DArray.ArraySize);
         break;
       case UAV_DIMENSION_TEXTURE3D:
-        c.dimension(Is3D(s), "UAV_DIMENSION_TEXTURE3D needs a Texture3D");
-        c.mips(s, d.Texture3D.MipSlice, one);
-        c.slices(s.mipDepth(d.Texture3D.MipSlice), d.Texture3D.FirstWSlice, d.Texture3D.WSize, "depth slices");
-        r.firstMip = d.Texture3D.MipSlice, r.firstSlice = d.Texture3D.FirstWSlice, r.sliceCount = d.Texture3D.WSize;
+        r = OutputRange(c, s, K::Tex3D, "UAV_DIMENSION_TEXTURE3D", d.Texture3D.MipSlice, &d.Texture3D.FirstWSlice, &d.Texture3D.WSize);
         break;
       default:
         c.dimension(false, "ViewDimension " + std::to_string(uint32_t(d.ViewDimension)) + " does not fit a texture");
