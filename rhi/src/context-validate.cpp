@@ -153,7 +153,15 @@ struct Checker {
           break;
         }
         case RegisterClass::UnorderedAccess:
-          if (r.type == ShaderResourceType::UavCounter) break;
+          if (r.type == ShaderResourceType::UavCounter && (stage == ShaderStage::Pixel || stage == ShaderStage::Compute)) {
+            // A UAV used only through IncrementCounter/DecrementCounter appears as its counter alone.
+            const UnorderedAccessView* v = (stage == ShaderStage::Pixel ? s.pixelUavs : s.computeUavs)[r.registerIndex].get();
+            std::string slot = SlotName(stage, 'u', r.registerIndex) + " ('" + r.name + "')";
+            if (!v) fail(ErrorId::UNBOUND_RESOURCE, sh, "the shader uses the counter of " + slot + " but no unordered access view is bound there");
+            if (!AsBuffer(v->GetResource()) || !(v->GetDesc().Buffer.Flags & (BUFFER_UAV_FLAG_APPEND | BUFFER_UAV_FLAG_COUNTER)))
+              fail(ErrorId::RESOURCE_TYPE_MISMATCH, sh, slot + " uses the hidden counter but " + Describe(v) + " was created without BUFFER_UAV_FLAG_APPEND or _COUNTER");
+            break;
+          }
           if (stage == ShaderStage::Pixel) checkUav(sh, stage, r, s.pixelUavs[r.registerIndex].get());
           else if (stage == ShaderStage::Compute) checkUav(sh, stage, r, s.computeUavs[r.registerIndex].get());
           else fail(ErrorId::NOT_SUPPORTED, sh, "UAVs are only available to pixel and compute shaders in D3D11.0");
@@ -186,7 +194,7 @@ void DrawValidator::CheckDraw(DeviceContext& ctx, const detail::DrawArgs& args, 
       if (in.systemValue) continue;
       const VertexAttribute* attr = nullptr;
       for (const VertexAttribute& a : s.inputLayout->Attributes())
-        if (a.location == in.location) attr = &a;
+        if (a.location == in.location && a.semanticName == in.semanticName && a.semanticIndex == in.semanticIndex) attr = &a;
       if (!attr)
         Fail(ErrorId::INPUT_LAYOUT_MISMATCH, call, Describe(s.inputLayout.get()),
              "the bound vertex shader reads " + in.semanticName + std::to_string(in.semanticIndex) + ", which the input layout does not provide (it was made for another shader)");

@@ -101,6 +101,8 @@ Ref<InputLayout> Device::CreateInputLayout(const INPUT_ELEMENT_DESC* elements, u
     a.offset = offset;
     a.perInstance = e.InputSlotClass == INPUT_PER_INSTANCE_DATA;
     a.stepRate = e.InstanceDataStepRate;
+    a.semanticName = sig->semanticName;
+    a.semanticIndex = sig->semanticIndex;
     attrs.push_back(a);
   }
   for (const SignatureElement& in : vs.reflection.inputs) {

@@ -1,4 +1,5 @@
 // HLSL -> SPIR-V -> (legalised, validated) -> reflection -> GLSL. See sp/hlsl/compiler.h.
+#include <glslang/Include/intermediate.h>
 #include <glslang/Public/ResourceLimits.h>
 #include <glslang/Public/ShaderLang.h>
 #include <glslang/SPIRV/GlslangToSpv.h>
@@ -7,6 +8,7 @@
 #include <fstream>
 #include <mutex>
 #include <regex>
+#include <set>
 #include <spirv-tools/libspirv.hpp>
 #include <spirv-tools/optimizer.hpp>
 #include <sstream>
@@ -127,6 +129,46 @@ std::vector<Diagnostic> ParseGlslangLog(const std::string& log, const std::strin
   return out;
 }
 
+// glslang's HLSL front end wraps the entry point in a function that copies the stage inputs into
+// temporaries and passes them to the user's function. For some inputs it declares the input but
+// never copies it (glslang 12: a scalar `uint c : SV_Coverage` parameter), so the shader reads an
+// undefined value; this finds entry-point arguments that are read but never written.
+class UnconnectedInputs : public glslang::TIntermTraverser {
+ public:
+  explicit UnconnectedInputs(std::string wrapper) : wrapper_(std::move(wrapper)) {}
+  std::vector<std::string> names;
+
+  bool visitAggregate(glslang::TVisit visit, glslang::TIntermAggregate* node) override {
+    if (node->getOp() == glslang::EOpFunction) {
+      inWrapper_ = visit == glslang::EvPreVisit && node->getName().compare(0, wrapper_.size(), wrapper_.c_str()) == 0;
+      written_.clear();
+    } else if (inWrapper_ && visit == glslang::EvPreVisit && node->getOp() == glslang::EOpFunctionCall) {
+      const glslang::TQualifierList& qualifiers = node->getQualifierList();
+      const glslang::TIntermSequence& args = node->getSequence();
+      for (size_t i = 0; i < args.size() && i < qualifiers.size(); ++i) {
+        const glslang::TIntermSymbol* sym = args[i]->getAsSymbolNode();
+        bool input = qualifiers[i] == glslang::EvqIn || qualifiers[i] == glslang::EvqConstReadOnly || qualifiers[i] == glslang::EvqInOut;
+        if (input && sym && sym->getQualifier().storage == glslang::EvqTemporary && !written_.count(sym->getId()))
+          names.push_back(sym->getName().c_str());
+      }
+    }
+    return true;
+  }
+  bool visitBinary(glslang::TVisit visit, glslang::TIntermBinary* node) override {
+    if (inWrapper_ && visit == glslang::EvPreVisit && node->getOp() == glslang::EOpAssign) {
+      glslang::TIntermTyped* target = node->getLeft();
+      while (glslang::TIntermBinary* b = target->getAsBinaryNode()) target = b->getLeft();  // a.b[i] -> a
+      if (glslang::TIntermSymbol* sym = target->getAsSymbolNode()) written_.insert(sym->getId());
+    }
+    return true;
+  }
+
+ private:
+  std::string wrapper_;
+  bool inWrapper_ = false;
+  std::set<long long> written_;
+};
+
 std::vector<uint32_t> RunGlslang(const std::string& source, const std::string& fileName, const CompileOptions& opt, ShaderStage stage,
                                  const std::string& entry, Includer& includer) {
   std::call_once(gInitOnce, [] { glslang::InitializeProcess(); });
@@ -169,6 +211,13 @@ std::vector<uint32_t> RunGlslang(const std::string& source, const std::string& f
   if (!program.link(messages) || !program.mapIO()) {
     std::string log = program.getInfoLog();
     throw CompileError("glslang (link)", fileName + ":" + entry, ParseGlslangLog(log, fileName), log);
+  }
+  UnconnectedInputs unconnected(entry + "(");
+  program.getIntermediate(lang)->getTreeRoot()->traverse(&unconnected);
+  if (!unconnected.names.empty()) {
+    std::string msg = "glslang does not connect the entry-point input '" + unconnected.names[0] +
+                      "' (it would read an undefined value); declare it as a member of an input struct instead";
+    throw CompileError("glslang", fileName + ":" + entry, {{fileName, 0, msg}}, msg);
   }
   std::vector<uint32_t> spirv;
   glslang::SpvOptions spvOptions;
@@ -259,10 +308,14 @@ ShaderBytecode CompileSource(std::string_view sourceView, const std::string& fil
   std::lock_guard lock(gCompileMutex);
   Includer includer(fs::path(fileName).parent_path(), opt.includeDirs);
   std::vector<uint32_t> spirv = RunGlslang(source, fileName, opt, stage, entry, includer);
+  DropBiasFromGathers(spirv);
+  FixAtomicOperandTypes(spirv);
+  // Before legalisation: a UAV used only through IncrementCounter/DecrementCounter is removed as
+  // dead code there, and with it the decoration that ties its counter to its register.
+  RemapCounterBindings(spirv, vkbind::kUnorderedAccess, vkbind::kUavCounter);
   spirv = Legalize(spirv, name);
   LowerDotAndMatrixProducts(spirv);
   ConstOffsetsFromConstants(spirv);
-  RemapCounterBindings(spirv, vkbind::kUnorderedAccess, vkbind::kUavCounter);
   ShiftUnshiftedTextureBindings(spirv, vkbind::kShaderResource);
   SetFormatOfReadImages(spirv);
   Validate(spirv, fileName, name);

@@ -23,6 +23,22 @@ using spirv_cross::SPIRType;
 
 uint32_t AlignUp(uint32_t v, uint32_t a) { return (v + a - 1) / a * a; }
 
+// OpAtomicSMin/SMax on unsigned integer memory (made by FixAtomicOperandTypes).
+bool HasSignedAtomicOnUnsignedWords(const std::vector<uint32_t>& spirv) {
+  std::vector<uint32_t> unsignedInts;
+  for (size_t i = 5; i < spirv.size();) {
+    uint32_t wc = spirv[i] >> 16;
+    if (wc == 0) break;
+    spv::Op op = spv::Op(spirv[i] & 0xffff);
+    if (op == spv::OpTypeInt && wc >= 4 && spirv[i + 3] == 0) unsignedInts.push_back(spirv[i + 1]);
+    if ((op == spv::OpAtomicSMin || op == spv::OpAtomicSMax) && wc >= 3 &&
+        std::find(unsignedInts.begin(), unsignedInts.end(), spirv[i + 1]) != unsignedInts.end())
+      return true;
+    i += wc;
+  }
+  return false;
+}
+
 struct Layout {
   uint32_t size = 0, align = 0;
 };
@@ -234,8 +250,22 @@ GlslOutput CrossCompileToGlsl(const std::vector<uint32_t>& spirv, const ShaderRe
       out.bindings.push_back(std::move(b));
     }
     out.glsl = c.compile();
+    if (HasSignedAtomicOnUnsignedWords(spirv)) {
+      // GLSL's atomicMin/atomicMax compare with the signedness of the memory, here the uint words
+      // of a RWByteAddressBuffer, so D3D11's signed int overloads cannot be expressed. The
+      // Vulkan bytecode is right; the GL driver rejects this GLSL when the shader is created.
+      size_t eol = out.glsl.find('\n');
+      out.glsl.insert(eol == std::string::npos ? out.glsl.size() : eol + 1,
+                      "#error InterlockedMin/InterlockedMax with an int value on a RWByteAddressBuffer compare signed in D3D11, which GLSL cannot "
+                      "express on the buffer's uint words\n");
+    }
   } catch (const spirv_cross::CompilerError& e) {
-    Fail(sourceName, std::string("SPIRV-Cross: ") + e.what());
+    std::string what = e.what();
+    if (what.find("cannot be expressed as any of std430") != std::string::npos)
+      Fail(sourceName, "a structured buffer's element has members at offsets that neither GLSL std430 nor Vulkan without scalar layout can "
+                       "express (D3D11's 4-byte packed layout, e.g. a float2 or float3 after a float); reorder the members largest first or "
+                       "pad them to their natural alignment (SPIRV-Cross: " + what + ")");
+    Fail(sourceName, "SPIRV-Cross: " + what);
   }
   return out;
 }

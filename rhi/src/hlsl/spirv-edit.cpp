@@ -252,4 +252,40 @@ std::set<uint32_t> WriteOnlyImageVariables(const std::vector<uint32_t>& spirv) {
   return result;
 }
 
+void DropBiasFromGathers(std::vector<uint32_t>& spirv) {
+  if (spirv.size() <= kHeaderWords) return;
+  std::vector<uint32_t> out(spirv.begin(), spirv.begin() + kHeaderWords);
+  out.reserve(spirv.size());
+  bool changed = false;
+  for (size_t i = kHeaderWords; i < spirv.size();) {
+    uint32_t wc = spirv[i] >> 16;
+    if (wc == 0 || i + wc > spirv.size()) {
+      out.insert(out.end(), spirv.begin() + i, spirv.end());
+      break;
+    }
+    spv::Op op = spv::Op(spirv[i] & 0xffff);
+    // glslang declares the AMD gather-bias extension for that operand; no driver here has it.
+    bool amdBias = (op == spv::OpCapability && wc == 2 && spirv[i + 1] == spv::CapabilityImageGatherBiasLodAMD) ||
+                   (op == spv::OpExtension && wc >= 2 &&
+                    std::string(reinterpret_cast<const char*>(&spirv[i + 1]), (wc - 1) * 4).c_str() == std::string("SPV_AMD_texture_gather_bias_lod"));
+    uint32_t maskIdx = op == spv::OpImageGather || op == spv::OpImageDrefGather ? ImageOperandsIndex(op) : 0;
+    if (amdBias) {
+      changed = true;
+    } else if (maskIdx && maskIdx < wc && (spirv[i + maskIdx] & spv::ImageOperandsBiasMask)) {
+      // Bias is the lowest image-operand bit, so its id is the word right after the mask.
+      std::vector<uint32_t> in(spirv.begin() + i, spirv.begin() + i + wc);
+      in.erase(in.begin() + maskIdx + 1);
+      in[maskIdx] &= ~uint32_t(spv::ImageOperandsBiasMask);
+      if (in[maskIdx] == 0) in.erase(in.begin() + maskIdx);
+      in[0] = (uint32_t(in.size()) << 16) | uint32_t(op);
+      out.insert(out.end(), in.begin(), in.end());
+      changed = true;
+    } else {
+      out.insert(out.end(), spirv.begin() + i, spirv.begin() + i + wc);
+    }
+    i += wc;
+  }
+  if (changed) spirv.swap(out);
+}
+
 }  // namespace sp::hlsl

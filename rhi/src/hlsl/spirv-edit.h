@@ -33,6 +33,17 @@ void SetFormatOfReadImages(std::vector<uint32_t>& spirv);
 // Variables (by result id) of storage images that are only written (no read, no atomics).
 std::set<uint32_t> WriteOnlyImageVariables(const std::vector<uint32_t>& spirv);
 
+// glslang 12 translates GatherCmp and GatherCmpRed without an offset into an OpImageDrefGather
+// that also passes the reference as a Bias operand, which SPIR-V allows only on implicit-LOD
+// sampling (D3D11's gather4_c has no bias). Remove Bias from every gather, and the AMD extension
+// and capability glslang declares for it.
+void DropBiasFromGathers(std::vector<uint32_t>& spirv);
+
+// Atomics on RWByteAddressBuffer get their value and comparator operands with the HLSL
+// argument's type (int for literals and int arguments), which SPIR-V rejects: bitcast them to the
+// word type, and make the int overloads of InterlockedMin/Max compare signed as in D3D11.
+void FixAtomicOperandTypes(std::vector<uint32_t>& spirv);
+
 // Rewrites OpDot, matrix products, length, normalize and distance into explicit scalar and
 // component-wise multiplies and adds in a fixed order, so that the Vulkan and GL drivers compute
 // bit-identical results (see spirv-arith.cpp).

@@ -169,6 +169,10 @@ struct VertexAttribute {
   uint32_t offset = 0;  // APPEND_ALIGNED_ELEMENT resolved
   bool perInstance = false;
   uint32_t stepRate = 0;
+  // The semantic it was matched by (upper case), so a draw can tell a layout made for another
+  // vertex shader whose inputs sit at the same locations.
+  std::string semanticName;
+  uint32_t semanticIndex = 0;
 };
 
 class InputLayout : public Object {
