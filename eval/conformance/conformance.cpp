@@ -14,6 +14,7 @@ const char* StatusName(Status s) {
     case Status::Pass: return "pass";
     case Status::Fail: return "FAIL";
     case Status::Unsupported: return "not supported by driver";
+    case Status::Deviation: return "driver deviation";
   }
   return "?";
 }
@@ -26,6 +27,16 @@ Result Within(double err, double tol, std::string unit, std::string what) {
   std::ostringstream s;
   s << what << ": error " << err << " " << unit << " exceeds " << tol;
   return Fail(s.str(), err, std::move(unit), tol);
+}
+
+Result WithinKnownDeviation(double err, double tol, double knownBound, std::string unit, std::string what, std::string explanation) {
+  if (err <= tol) return Pass(err, std::move(unit), tol);
+  if (err <= knownBound) {
+    std::ostringstream s;
+    s << explanation << " (" << what << ": " << err << " " << unit << ", D3D11 allows " << tol << ")";
+    return {Status::Deviation, err, std::move(unit), tol, s.str()};
+  }
+  return Within(err, tol, std::move(unit), what);
 }
 
 static std::vector<Probe>& Mutable() {
@@ -142,7 +153,8 @@ std::string FormatMarkdown(const std::vector<ProbeRun>& runs) {
     for (Backend b : backends) {
       auto it = byBackend.find(b);
       s << " " << (it == byBackend.end() ? "-" : Cell(it->second->result));
-      if (it != byBackend.end() && it->second->result.status == Status::Fail) s << ": " << it->second->result.detail;
+      if (it != byBackend.end() && (it->second->result.status == Status::Fail || it->second->result.status == Status::Deviation))
+        s << ": " << it->second->result.detail;
       s << " |";
       if (it != byBackend.end()) {
         ++total;
@@ -162,7 +174,8 @@ std::string FormatJson(const std::vector<ProbeRun>& runs) {
     nlohmann::json p = {{"group", probe->group}, {"name", probe->name}, {"description", probe->description}, {"results", nlohmann::json::object()}};
     for (auto& [b, run] : byBackend) {
       const Result& r = run->result;
-      p["results"][BackendName(b)] = {{"status", r.status == Status::Pass ? "pass" : r.status == Status::Fail ? "fail" : "unsupported"},
+      const char* status = r.status == Status::Pass ? "pass" : r.status == Status::Fail ? "fail" : r.status == Status::Deviation ? "deviation" : "unsupported";
+      p["results"][BackendName(b)] = {{"status", status},
                                      {"measured_error", r.measuredError},
                                      {"unit", r.errorUnit},
                                      {"tolerance", r.tolerance},

@@ -10,7 +10,9 @@
 
 namespace sp::conformance {
 
-enum class Status { Pass, Fail, Unsupported };
+// Deviation: the driver departs from D3D11 by a measured, documented amount within a known bound
+// (the table shows it; the test suite accepts it); beyond the bound it is a failure.
+enum class Status { Pass, Fail, Unsupported, Deviation };
 const char* StatusName(Status s);
 
 struct Result {
@@ -27,6 +29,10 @@ Result Fail(std::string detail, double measuredError = 0, std::string unit = "",
 Result Unsupported(std::string reason);
 // Pass if error <= tolerance, else Fail with `what` in the detail.
 Result Within(double error, double tolerance, std::string unit, std::string what);
+// Like Within, but an error above D3D11's tolerance and at most `knownBound` is a Deviation whose
+// detail is `explanation` (what the driver does differently, and why it cannot be corrected).
+Result WithinKnownDeviation(double error, double tolerance, double knownBound, std::string unit, std::string what,
+                            std::string explanation);
 
 struct Probe {
   std::string group;        // "Depth bias", "Rasterization", "Sampling", ...

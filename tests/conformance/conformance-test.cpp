@@ -27,6 +27,12 @@ TEST_P(D3D11Conformance, Probe) {
   conformance::Result r = conformance::RunProbe(probe, *device);
   RecordProperty("measured_error", std::to_string(r.measuredError) + " " + r.errorUnit);
   if (r.status == conformance::Status::Unsupported) GTEST_SKIP() << probe.group << " / " << probe.name << ": " << r.detail;
+  if (r.status == conformance::Status::Deviation) {
+    // Known and bounded driver deviations are reported, not failed (docs/conformance.md lists them).
+    RecordProperty("driver_deviation", r.detail);
+    std::printf("[ DEVIATION] %s / %s: %s\n", probe.group.c_str(), probe.name.c_str(), r.detail.c_str());
+    return;
+  }
   EXPECT_EQ(r.status, conformance::Status::Pass) << probe.group << " / " << probe.name << " (" << probe.description << "): " << r.detail;
   for (const std::string& e : errors) ADD_FAILURE() << "validation error: " << e;
 }

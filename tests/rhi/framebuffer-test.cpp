@@ -1,6 +1,7 @@
 // Output-merger bindings: several render targets with gaps, render-target views of one array
 // slice, mip or 3D slice, clears of exactly a view's subresources, sRGB encoding on write and on
-// clear, and MSAA (sample mask, per-sample loads, resolve).
+// clear, and MSAA mechanics (typeless resolve, sample counts). Per-sample loads through sample
+// masks and resolve averaging are conformance probes (eval/conformance/probes/resource-msaa.cpp).
 #include <cmath>
 
 #include "rhi-test-util.h"
@@ -19,8 +20,6 @@ float4 VSFull(uint id : SV_VertexID) : SV_Position {
 float4 PSColor(float4 p : SV_Position) : SV_Target { return color; }
 struct Three { float4 a : SV_Target0; float4 b : SV_Target1; float4 c : SV_Target2; };
 Three PSThree(float4 p : SV_Position) { Three o; o.a = float4(1, 0, 0, 1); o.b = float4(0, 1, 0, 1); o.c = float4(0, 0, 1, 1); return o; }
-Texture2DMS<float4> ms : register(t0);
-float4 PSLoadSample(float4 p : SV_Position) : SV_Target { return ms.Load(int2(p.xy), uint(p.x) % 4); }
 )";
 
 class Fullscreen {
@@ -178,44 +177,6 @@ TEST_P(FramebufferTest, SrgbEncodesOnWriteAndClear) {
   EXPECT_NEAR(px[1], encode(0.5), 1);
   EXPECT_NEAR(px[2], encode(0.25), 1);
   EXPECT_EQ(px[3], 255);
-}
-
-// 4x MSAA (when the device has it): the sample mask selects samples, Texture2DMS.Load reads
-// them one by one, ResolveSubresource averages them.
-TEST_P(FramebufferTest, MultisampleMaskLoadAndResolve) {
-  if (!device().CheckMultisampleQualityLevels(FORMAT_R32G32B32A32_FLOAT, 4)) GTEST_SKIP() << "no 4x MSAA for R32G32B32A32_FLOAT";
-  const uint32_t W = 8, H = 2;
-  Ref<Texture2D> ms = MakeTexture2D(device(), W, H, FORMAT_R32G32B32A32_FLOAT, BIND_RENDER_TARGET | BIND_SHADER_RESOURCE, nullptr, 1, 1, 4);
-  Ref<RenderTargetView> rtv = device().CreateRenderTargetView(ms.get());
-  Ref<ShaderResourceView> srv = device().CreateShaderResourceView(ms.get());
-  Fullscreen fs(device());
-  const float zero[4] = {0, 0, 0, 0};
-  ctx().ClearRenderTargetView(rtv.get(), zero);
-  RenderTargetView* rtvs[] = {rtv.get()};
-  ctx().OMSetRenderTargets(1, rtvs, nullptr);
-  ctx().OMSetBlendState(nullptr, nullptr, 0x5);  // samples 0 and 2
-  SetViewport(ctx(), W, H);
-  const float color[4] = {1, 2, 4, 8};
-  fs.Draw(ctx(), color);
-  ctx().OMSetBlendState(nullptr, nullptr, 0xffffffff);
-
-  Target loaded = MakeTarget(device(), W, H, FORMAT_R32G32B32A32_FLOAT);
-  Ref<PixelShader> load = device().CreatePixelShader(CompileHlsl(kShaders, "ps_5_0", "PSLoadSample"));
-  RenderTargetView* out[] = {loaded.rtv.get()};
-  ctx().OMSetRenderTargets(1, out, nullptr);
-  ctx().PSSetShaderResources(0, {srv.get()});
-  fs.Draw(ctx(), zero, load.get());
-  std::vector<float> samples = ReadTextureAs<float>(device(), ctx(), loaded.texture.get());
-  for (uint32_t x = 0; x < W; ++x) {
-    bool written = (x % 4) == 0 || (x % 4) == 2;
-    EXPECT_EQ(samples[x * 4 + 3], written ? 8.0f : 0.0f) << "sample " << x % 4;
-  }
-  ctx().PSSetShaderResources(0, {nullptr});
-  Ref<Texture2D> resolved = MakeTexture2D(device(), W, H, FORMAT_R32G32B32A32_FLOAT, BIND_SHADER_RESOURCE);
-  ctx().ResolveSubresource(resolved.get(), 0, ms.get(), 0, FORMAT_R32G32B32A32_FLOAT);
-  std::vector<float> r = ReadTextureAs<float>(device(), ctx(), resolved.get());
-  for (uint32_t i = 0; i < W * H; ++i)
-    for (int c = 0; c < 4; ++c) EXPECT_FLOAT_EQ(r[i * 4 + c], color[c] / 2) << i;
 }
 
 // Resolving a TYPELESS multisampled texture through a typed format.

@@ -1,6 +1,7 @@
-// Fixed-function state with D3D11's rules: winding and culling, scissor and viewport, depth
-// clipping and clamping, depth test and write mask, stencil per face, independent blending and
-// write masks, blend factor, dual-source blending, and depth bias by D3D11's formula.
+// Fixed-function state with D3D11's rules: depth clipping and clamping, depth test and write
+// mask, stencil per face, independent blending and write masks, blend factor, dual-source
+// blending, and depth bias by D3D11's formula. Winding, culling, viewport and scissor are
+// conformance probes (eval/conformance/probes/raster-*.cpp).
 #include <cmath>
 
 #include "rhi-test-util.h"
@@ -12,7 +13,6 @@ const char* kShaders = R"(
 cbuffer Color : register(b0) { float4 color; float4 color1; };
 float4 VSMain(float3 p : POSITION) : SV_Position { return float4(p, 1); }
 float4 PSColor(float4 p : SV_Position) : SV_Target { return color; }
-float4 PSFace(float4 p : SV_Position, bool front : SV_IsFrontFace) : SV_Target { return front ? float4(1, 0, 0, 1) : float4(0, 1, 0, 1); }
 struct Two { float4 a : SV_Target0; float4 b : SV_Target1; };
 Two PSTwo(float4 p : SV_Position) { Two o; o.a = color; o.b = color1; return o; }
 )";
@@ -58,78 +58,6 @@ class StateTest : public BackendTest {
   Ref<PixelShader> colorPs_;
   Ref<Buffer> constants_;
 };
-
-// Clockwise on screen (y down) is D3D11's front face unless FrontCounterClockwise.
-TEST_P(StateTest, WindingAndCulling) {
-  const uint32_t W = 16, H = 8;
-  Target t = MakeTarget(device(), W, H, FORMAT_R8G8B8A8_UNORM);
-  Ref<PixelShader> facePs = device().CreatePixelShader(CompileHlsl(kShaders, "ps_5_0", "PSFace"));
-  // Left: clockwise on screen; right: counter-clockwise.
-  std::vector<Vertex> tris = {{0, 0, 0}, {8, 0, 0}, {0, 8, 0}, {8, 0, 0}, {16, 8, 0}, {16, 0, 0}};
-  struct Case {
-    CULL_MODE cull;
-    bool ccwFront;
-    uint8_t left[2], right[2];  // red, green expected (front = red, back = green, culled = 0)
-  };
-  const Case cases[] = {{CULL_NONE, false, {255, 0}, {0, 255}},
-                        {CULL_BACK, false, {255, 0}, {0, 0}},
-                        {CULL_FRONT, false, {0, 0}, {0, 255}},
-                        {CULL_BACK, true, {0, 0}, {255, 0}},
-                        {CULL_NONE, true, {0, 255}, {255, 0}}};
-  for (const Case& c : cases) {
-    RASTERIZER_DESC rd;
-    rd.CullMode = c.cull;
-    rd.FrontCounterClockwise = c.ccwFront;
-    Ref<RasterizerState> rs = device().CreateRasterizerState(rd);
-    const float zero[4] = {0, 0, 0, 0};
-    ctx().ClearRenderTargetView(t.rtv.get(), zero);
-    RenderTargetView* rtvs[] = {t.rtv.get()};
-    ctx().OMSetRenderTargets(1, rtvs, nullptr);
-    SetViewport(ctx(), W, H);
-    ctx().RSSetState(rs.get());
-    ctx().PSSetShader(facePs.get());
-    DrawPixels(tris, W, H);
-    std::vector<uint8_t> px = ReadTexture(device(), ctx(), t.texture.get());
-    const uint8_t* l = &px[(1 * W + 1) * 4];
-    const uint8_t* r = &px[(1 * W + 14) * 4];
-    EXPECT_EQ(l[0], c.left[0]) << "cull " << c.cull << " ccwFront " << c.ccwFront;
-    EXPECT_EQ(l[1], c.left[1]) << "cull " << c.cull << " ccwFront " << c.ccwFront;
-    EXPECT_EQ(r[0], c.right[0]) << "cull " << c.cull << " ccwFront " << c.ccwFront;
-    EXPECT_EQ(r[1], c.right[1]) << "cull " << c.cull << " ccwFront " << c.ccwFront;
-  }
-}
-
-// Viewport and scissor rectangles count from the top-left pixel; clears ignore the scissor.
-TEST_P(StateTest, ViewportScissorAndClears) {
-  const uint32_t W = 32, H = 16;
-  Target t = MakeTarget(device(), W, H, FORMAT_R8G8B8A8_UNORM);
-  RASTERIZER_DESC rd;
-  rd.CullMode = CULL_NONE;
-  rd.ScissorEnable = true;
-  Ref<RasterizerState> rs = device().CreateRasterizerState(rd);
-  RenderTargetView* rtvs[] = {t.rtv.get()};
-  ctx().OMSetRenderTargets(1, rtvs, nullptr);
-  ctx().RSSetState(rs.get());
-  VIEWPORT vp{4, 2, 16, 8, 0, 1};  // covers x 4..19, y 2..9
-  ctx().RSSetViewports(1, &vp);
-  RECT sc{10, 0, 30, 6};  // x 10..29, y 0..5
-  ctx().RSSetScissorRects(1, &sc);
-  ctx().PSSetShader(colorPs_.get());
-  SetColor(1, 1, 1, 1);
-  const float blue[4] = {0, 0, 1, 1};
-  ctx().ClearRenderTargetView(t.rtv.get(), blue);  // scissor set: D3D still clears everything
-  // A triangle covering the whole viewport (NDC -1..3).
-  std::vector<Vertex> big = {{0, 0, 0}, {64, 0, 0}, {0, 32, 0}};
-  DrawPixels(big, W / 2, H / 2);
-  std::vector<uint8_t> px = ReadTexture(device(), ctx(), t.texture.get());
-  for (uint32_t y = 0; y < H; ++y)
-    for (uint32_t x = 0; x < W; ++x) {
-      bool inside = x >= 4 && x < 20 && y >= 2 && y < 10 && x >= 10 && x < 30 && y < 6;
-      const uint8_t* p = &px[(y * W + x) * 4];
-      EXPECT_EQ(p[0], inside ? 255 : 0) << x << "," << y;
-      EXPECT_EQ(p[2], 255) << x << "," << y;
-    }
-}
 
 // DepthClipEnable = FALSE keeps geometry beyond the far plane and clamps its depth to the
 // viewport's MaxDepth; with clipping on it is dropped.

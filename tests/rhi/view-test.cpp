@@ -1,7 +1,8 @@
 // Shader resource views and samplers: array-slice and mip ranges, cube maps and cube arrays,
-// depth and stencil read through R24G8_TYPELESS views, comparison sampling, typeless
-// reinterpretation, address modes with border colours, LOD clamps, and typed, structured and raw
-// buffer views with element offsets.
+// typeless reinterpretation, min/max reduction filters, and typed, structured and raw buffer views
+// with element offsets. Depth and stencil read through R24G8_TYPELESS views are a conformance
+// probe (eval/conformance/probes/resource-depth-views.cpp), and so are comparison sampling,
+// address modes with border colours and LOD clamps (eval/conformance/probes/sampling-*.cpp).
 #include <algorithm>
 #include <cmath>
 
@@ -114,86 +115,6 @@ static const float3 dirs[6] = {float3(1, 0.1, 0.2), float3(-1, 0.1, 0.2), float3
   }
 }
 
-// R24G8_TYPELESS: depth through R24_UNORM_X8_TYPELESS reads (d, 0, 0, 1), stencil through
-// X24_TYPELESS_G8_UINT reads in .g.
-TEST_P(ViewTest, DepthAndStencilViewsOfOneTexture) {
-  Ref<Texture2D> ds = MakeTexture2D(device(), 4, 4, FORMAT_R24G8_TYPELESS, BIND_DEPTH_STENCIL | BIND_SHADER_RESOURCE);
-  DEPTH_STENCIL_VIEW_DESC dd;
-  dd.Format = FORMAT_D24_UNORM_S8_UINT;
-  dd.ViewDimension = DSV_DIMENSION_TEXTURE2D;
-  Ref<DepthStencilView> dsv = device().CreateDepthStencilView(ds.get(), &dd);
-  ctx().ClearDepthStencilView(dsv.get(), CLEAR_DEPTH | CLEAR_STENCIL, 0.25f, 0xa7);
-  SHADER_RESOURCE_VIEW_DESC sd;
-  sd.Format = FORMAT_R24_UNORM_X8_TYPELESS;
-  sd.ViewDimension = SRV_DIMENSION_TEXTURE2D;
-  sd.Texture2D = {0, 1};
-  Ref<ShaderResourceView> depth = device().CreateShaderResourceView(ds.get(), &sd);
-  sd.Format = FORMAT_X24_TYPELESS_G8_UINT;
-  Ref<ShaderResourceView> stencil = device().CreateShaderResourceView(ds.get(), &sd);
-  Ref<SamplerState> point = Sampler(FILTER_MIN_MAG_MIP_POINT);
-  const char* src = R"(
-Texture2D<float4> depth : register(t0);
-Texture2D<uint2> stencil : register(t1);
-SamplerState smp : register(s0);
-RWStructuredBuffer<float4> output : register(u0);
-[numthreads(1, 1, 1)] void main() {
-  output[0] = depth.Load(int3(1, 2, 0));
-  output[1] = depth.SampleLevel(smp, float2(0.5, 0.5), 0);
-  output[2] = float4(stencil.Load(int3(3, 3, 0)).g, 0, 0, 0);
-}
-)";
-  std::vector<float> r = RunCompute(src, 3, {depth.get(), stencil.get()}, {point.get()});
-  const float d = float(std::lround(0.25 * 16777215.0) / 16777215.0);
-  EXPECT_NEAR(r[0], d, 1e-6);
-  EXPECT_EQ(r[1], 0.0f);
-  EXPECT_EQ(r[2], 0.0f);
-  EXPECT_EQ(r[3], 1.0f);
-  EXPECT_NEAR(r[4], d, 1e-6);
-  EXPECT_EQ(r[8], float(0xa7));
-}
-
-// SampleCmp compares `reference OP texel` per texel, then filters the results.
-TEST_P(ViewTest, ComparisonSampling) {
-  const uint32_t W = 4;
-  std::vector<float> depths = {0.1f, 0.3f, 0.5f, 0.7f};
-  Ref<Texture2D> tex = MakeTexture2D(device(), W, 1, FORMAT_R32_TYPELESS, BIND_DEPTH_STENCIL | BIND_SHADER_RESOURCE);
-  // Depth textures cannot be initialised through UpdateSubresource: copy from a staging texture.
-  TEXTURE2D_DESC sdsc = tex->GetDesc();
-  sdsc.BindFlags = 0;
-  sdsc.Usage = USAGE_STAGING;
-  sdsc.CPUAccessFlags = CPU_ACCESS_WRITE;
-  sdsc.Format = FORMAT_R32_TYPELESS;
-  SUBRESOURCE_DATA init{depths.data(), W * 4, 0};
-  Ref<Texture2D> staging = device().CreateTexture2D(sdsc, &init);
-  ctx().CopyResource(tex.get(), staging.get());
-  SHADER_RESOURCE_VIEW_DESC sd;
-  sd.Format = FORMAT_R32_FLOAT;
-  sd.ViewDimension = SRV_DIMENSION_TEXTURE2D;
-  sd.Texture2D = {0, 1};
-  Ref<ShaderResourceView> srv = device().CreateShaderResourceView(tex.get(), &sd);
-  SAMPLER_DESC cd;
-  cd.Filter = FILTER_COMPARISON_MIN_MAG_MIP_POINT;
-  cd.ComparisonFunc = COMPARISON_LESS_EQUAL;
-  Ref<SamplerState> cmp = device().CreateSamplerState(cd);
-  Ref<SamplerState> point = Sampler(FILTER_MIN_MAG_MIP_POINT);
-  const char* src = R"(
-Texture2D<float> shadow : register(t0);
-SamplerComparisonState cmp : register(s0);
-SamplerState pt : register(s1);
-RWStructuredBuffer<float4> output : register(u0);
-[numthreads(4, 1, 1)] void main(uint3 i : SV_DispatchThreadID) {
-  float2 uv = float2((i.x + 0.5) / 4, 0.5);
-  output[i.x] = float4(shadow.SampleCmpLevelZero(cmp, uv, 0.4), shadow.SampleCmpLevelZero(cmp, uv, 0.6), shadow.SampleLevel(pt, uv, 0), 0);
-}
-)";
-  std::vector<float> r = RunCompute(src, W, {srv.get()}, {cmp.get(), point.get()});
-  for (uint32_t x = 0; x < W; ++x) {
-    EXPECT_EQ(r[x * 4 + 0], 0.4f <= depths[x] ? 1.0f : 0.0f) << x;
-    EXPECT_EQ(r[x * 4 + 1], 0.6f <= depths[x] ? 1.0f : 0.0f) << x;
-    EXPECT_EQ(r[x * 4 + 2], depths[x]) << x;  // the same texture, without comparison
-  }
-}
-
 // One R8G8B8A8_TYPELESS texture read as UNORM, UINT and SNORM at the same time.
 TEST_P(ViewTest, TypelessReinterpretation) {
   const uint8_t texel[4] = {255, 128, 1, 0x81};
@@ -224,89 +145,6 @@ RWStructuredBuffer<float4> output : register(u0);
     int8_t s = int8_t(texel[c]);
     EXPECT_FLOAT_EQ(r[8 + c], std::max(-1.0f, s / 127.0f)) << c;
   }
-}
-
-// Point sampling a 4-texel row at coordinates outside [0, 1] with each address mode.
-TEST_P(ViewTest, AddressModesAndBorderColour) {
-  const float row[4] = {10, 20, 30, 40};
-  Ref<Texture2D> tex = MakeTexture2D(device(), 4, 1, FORMAT_R32_FLOAT, BIND_SHADER_RESOURCE, row);
-  Ref<ShaderResourceView> srv = device().CreateShaderResourceView(tex.get());
-  const float us[5] = {-0.375f, 1.125f, 1.375f, 2.125f, -1.125f};
-  const TEXTURE_ADDRESS_MODE modes[5] = {TEXTURE_ADDRESS_WRAP, TEXTURE_ADDRESS_MIRROR, TEXTURE_ADDRESS_CLAMP, TEXTURE_ADDRESS_BORDER,
-                                         TEXTURE_ADDRESS_MIRROR_ONCE};
-  std::vector<SamplerState*> samplers;
-  std::vector<Ref<SamplerState>> keep;
-  for (TEXTURE_ADDRESS_MODE m : modes) {
-    SAMPLER_DESC d;
-    d.Filter = FILTER_MIN_MAG_MIP_POINT;
-    d.AddressU = d.AddressV = d.AddressW = m;
-    d.BorderColor[0] = -5;
-    keep.push_back(device().CreateSamplerState(d));
-    samplers.push_back(keep.back().get());
-  }
-  const char* src = R"(
-Texture2D<float> tex : register(t0);
-SamplerState s0 : register(s0);
-SamplerState s1 : register(s1);
-SamplerState s2 : register(s2);
-SamplerState s3 : register(s3);
-SamplerState s4 : register(s4);
-RWStructuredBuffer<float4> output : register(u0);
-static const float us[5] = {-0.375, 1.125, 1.375, 2.125, -1.125};
-[numthreads(5, 1, 1)] void main(uint3 i : SV_DispatchThreadID) {
-  float2 uv = float2(us[i.x], 0.5);
-  output[i.x] = float4(tex.SampleLevel(s0, uv, 0), tex.SampleLevel(s1, uv, 0), tex.SampleLevel(s2, uv, 0), tex.SampleLevel(s3, uv, 0));
-  output[5 + i.x] = float4(tex.SampleLevel(s4, uv, 0), 0, 0, 0);
-}
-)";
-  std::vector<float> r = RunCompute(src, 10, {srv.get()}, samplers);
-  for (uint32_t i = 0; i < 5; ++i) {
-    // Texel coordinate of the sample, then each mode's rule (D3D11 spec, texture addressing).
-    int t = int(std::floor(us[i] * 4));
-    auto wrap = [](int v) { return ((v % 4) + 4) % 4; };
-    auto mirror = [](int v) {
-      int p = ((v % 8) + 8) % 8;
-      return p < 4 ? p : 7 - p;
-    };
-    float expect[5] = {row[wrap(t)], row[mirror(t)], row[std::clamp(t, 0, 3)], t < 0 || t > 3 ? -5.0f : row[t],
-                       row[std::clamp(t < 0 ? -t - 1 : t, 0, 3)]};
-    for (int m = 0; m < 4; ++m) EXPECT_EQ(r[i * 4 + m], expect[m]) << "u " << us[i] << " mode " << modes[m];
-    EXPECT_EQ(r[(5 + i) * 4], expect[4]) << "u " << us[i] << " MIRROR_ONCE";
-  }
-}
-
-// MinLOD and MaxLOD clamp the level even for SampleLevel.
-TEST_P(ViewTest, SamplerLodClamps) {
-  std::vector<std::vector<float>> mips = {std::vector<float>(16, 1.0f), std::vector<float>(4, 2.0f), std::vector<float>(1, 3.0f)};
-  SUBRESOURCE_DATA init[3] = {{mips[0].data(), 16, 0}, {mips[1].data(), 8, 0}, {mips[2].data(), 4, 0}};
-  TEXTURE2D_DESC td;
-  td.Width = td.Height = 4;
-  td.MipLevels = 3;
-  td.Format = FORMAT_R32_FLOAT;
-  td.BindFlags = BIND_SHADER_RESOURCE;
-  Ref<Texture2D> tex = device().CreateTexture2D(td, init);
-  Ref<ShaderResourceView> srv = device().CreateShaderResourceView(tex.get());
-  SAMPLER_DESC a;
-  a.Filter = FILTER_MIN_MAG_MIP_POINT;
-  a.MinLOD = 1;
-  Ref<SamplerState> minLod = device().CreateSamplerState(a);
-  SAMPLER_DESC b;
-  b.Filter = FILTER_MIN_MAG_MIP_POINT;
-  b.MaxLOD = 1;
-  Ref<SamplerState> maxLod = device().CreateSamplerState(b);
-  const char* src = R"(
-Texture2D<float> tex : register(t0);
-SamplerState minLod : register(s0);
-SamplerState maxLod : register(s1);
-RWStructuredBuffer<float4> output : register(u0);
-[numthreads(1, 1, 1)] void main() {
-  output[0] = float4(tex.SampleLevel(minLod, 0.5, 0), tex.SampleLevel(maxLod, 0.5, 2), tex.SampleLevel(maxLod, 0.5, 0), 0);
-}
-)";
-  std::vector<float> r = RunCompute(src, 1, {srv.get()}, {minLod.get(), maxLod.get()});
-  EXPECT_EQ(r[0], 2.0f);
-  EXPECT_EQ(r[1], 2.0f);
-  EXPECT_EQ(r[2], 1.0f);
 }
 
 // MINIMUM/MAXIMUM filters reduce the texels of the footprint instead of weighting them (where
