@@ -30,5 +30,7 @@ int RunRender(const Args& args);
 int RunHlslc(const std::vector<std::string>& argv);
 int RunDemo(const Args& args);
 int RunConformance(const Args& args);
+int RunBench(const Args& args);
+int RunReport(const Args& args);
 
 }  // namespace sp::cli

@@ -1,4 +1,4 @@
-// shadowport: render, demo, hlslc (and, as the lab grows, bench, report, conformance).
+// shadowport: render, demo, hlslc, conformance, and the lab's bench and report.
 #include <cstdio>
 #include <exception>
 #include <sp/rhi/common.h>
@@ -17,6 +17,12 @@ void Help() {
       "          renders one frame of a scene with a shadow technique\n"
       "  demo    [--out dir] [--size WxH] [--technique NAME] [--scene NAME] [--param k=v]...\n"
       "          renders on both backends with validation on, writes the pictures, a diff and summary.md\n"
+      "  bench   --scene S[,S...] --technique T[,T...] --backend vulkan|gl|both --size WxH --frames N\n"
+      "          [--param k=v[,v...]]... [--triangles N] [--path NAME] [--out results.json] [--reference-cache dir] [--validate]\n"
+      "          measures techniques against the ray-traced reference along a camera path (default slow-pan);\n"
+      "          writes {\"runs\": [...]} and pictures beside it; a --param with several values sweeps them\n"
+      "  report  results.json... --out dir [--title text]\n"
+      "          charts and an HTML page from bench results (eval/report/report.py)\n"
       "  conformance [--backend vulkan|gl|both] [--out dir] [--filter text] [--verbose]\n"
       "          runs the D3D11 conformance probes; prints the feature x backend table, writes Markdown and JSON\n"
       "  hlslc   file.hlsl -T vs_5_0|ps_5_0|cs_5_0 [-E entry] [-D NAME[=VALUE]] [-I dir] [-Fo out]\n"
@@ -37,6 +43,8 @@ int main(int argc, char** argv) {
     if (cmd == "render") return sp::cli::RunRender(sp::cli::Args(rest, {"validate"}));
     if (cmd == "demo") return sp::cli::RunDemo(sp::cli::Args(rest));
     if (cmd == "hlslc") return sp::cli::RunHlslc(rest);
+    if (cmd == "bench") return sp::cli::RunBench(sp::cli::Args(rest, {"validate"}));
+    if (cmd == "report") return sp::cli::RunReport(sp::cli::Args(rest));
     if (cmd == "conformance") return sp::cli::RunConformance(sp::cli::Args(rest, {"verbose"}));
     std::fprintf(stderr, "shadowport: unknown command '%s'\n", cmd.c_str());
     Help();

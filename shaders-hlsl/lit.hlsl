@@ -1,8 +1,16 @@
 // The lit pass: Lambert diffuse with the shadow technique's visibility, plus ambient.
 // The renderer compiles it after the technique's lighting include, which defines
 //   float ShadowVisibility(float3 worldPos, float3 worldNormal, float4 svPosition)
-// returning 1 for lit and 0 for shadowed (filtered techniques return values in between).
+// returning 1 for lit and 0 for shadowed (filtered techniques return values in between), and,
+// for the lab, ShadowLocate and ShadowTexel (common/shadow-lookup.hlsli).
+//
+// SP_LAB=1 compiles the lab's variant: the same colour plus what the measurements need, one
+// render target each (techniques/renderer.h, LabBuffers). The normal variant is unchanged by it.
 #include "common/frame.hlsli"
+
+#ifndef SP_LAB
+#define SP_LAB 0
+#endif
 
 struct VSIn {
   float3 pos : POSITION;
@@ -25,6 +33,8 @@ VSOut VSMain(VSIn i) {
   return o;
 }
 
+#if !SP_LAB
+
 float4 PSMain(VSOut i) : SV_Target {
   float3 n = normalize(i.normal);
   float ndotl = saturate(dot(n, toLight));
@@ -32,3 +42,45 @@ float4 PSMain(VSOut i) : SV_Target {
   float3 color = albedo * (ambient + lightColor * ndotl * visibility);
   return float4(color, 1.0);
 }
+
+#else
+
+struct LabOut {
+  float4 color : SV_Target0;       // as the normal variant
+  float4 position : SV_Target1;    // world position; w = 1 (the clear leaves 0 where nothing was drawn)
+  float4 normal : SV_Target2;      // unit world normal; w = N.L, saturated, as shading uses it
+  float visibility : SV_Target3;   // ShadowVisibility for every pixel, facing the light or not
+  float4 lookup : SV_Target4;      // layer (-1: no map read), texel x, texel y, texels per pixel
+  float4 albedo : SV_Target5;      // to shade the reference image the same way on the CPU
+};
+
+LabOut PSMain(VSOut i) {
+  // Derivatives first, in uniform control flow.
+  float3 dpdx = ddx(i.worldPos);
+  float3 dpdy = ddy(i.worldPos);
+  float3 n = normalize(i.normal);
+  float ndotl = saturate(dot(n, toLight));
+  float visibility = ShadowVisibility(i.worldPos, n, i.pos);
+  ShadowLookup l = ShadowLocate(i.worldPos, n);
+  // Texels per pixel: the square root of the map area, in texels, that the pixel's footprint
+  // covers: |det J| of the 2x2 Jacobian of texel coordinates over screen x and y, with the layer
+  // held at the pixel's own.
+  float texelsPerPixel = 0.0;
+  if (l.layer >= 0.0) {
+    float2 t0 = ShadowTexel(i.worldPos, l.layer);
+    float2 jx = ShadowTexel(i.worldPos + dpdx, l.layer) - t0;
+    float2 jy = ShadowTexel(i.worldPos + dpdy, l.layer) - t0;
+    texelsPerPixel = sqrt(abs(jx.x * jy.y - jx.y * jy.x));
+  }
+  LabOut o;
+  // ndotl is 0 where the normal variant skips the lookup, so the colour is the same.
+  o.color = float4(albedo * (ambient + lightColor * ndotl * visibility), 1.0);
+  o.position = float4(i.worldPos, 1.0);
+  o.normal = float4(n, ndotl);
+  o.visibility = visibility;
+  o.lookup = float4(l.layer, l.texel, texelsPerPixel);
+  o.albedo = float4(albedo, 1.0);
+  return o;
+}
+
+#endif

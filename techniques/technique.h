@@ -2,7 +2,10 @@
 //  - declares its parameters (names, ranges, defaults) so `--param k=v` is validated for it;
 //  - records its shadow passes for a frame (scene, camera, light given);
 //  - provides the lighting side: an HLSL include defining ShadowVisibility() and the resources it
-//    reads, bound into the registers reserved for techniques (b2-b5, t0-t15, s0-s3).
+//    reads, bound into the registers reserved for techniques (b2-b5, t0-t15, s0-s3); for the lab,
+//    the include also defines ShadowLocate() and ShadowTexel() (shaders-hlsl/common/
+//    shadow-lookup.hlsli) and the technique lists its map layers (Layers());
+//  - times its own passes with FrameInputs::timer ("shadow", "analysis", "blur", ...).
 // Adding a technique = a folder in techniques/, its HLSL in shaders-hlsl/, one registry line.
 #pragma once
 #include <glm/glm.hpp>
@@ -13,6 +16,7 @@
 #include <vector>
 
 #include "gpu-scene.h"
+#include "gpu-timer.h"
 
 namespace sp::tech {
 
@@ -57,6 +61,9 @@ struct FrameInputs {
   scene::DirectionalLight light;
   uint32_t width = 0, height = 0;  // of the lit pass
   glm::mat4 cameraView{1.0f}, cameraProj{1.0f};
+  // Set while the lab measures GPU time; techniques bracket their passes with
+  // GpuTimer::Scope(timer, ctx, "shadow") (a null timer makes the scope a no-op).
+  GpuTimer* timer = nullptr;
 };
 
 // Draws the scene's geometry from a given view-projection with the depth-only shader (what every
@@ -80,6 +87,12 @@ class SceneDrawer {
   Ref<InputLayout> depthLayout_;
 };
 
+// One layer of a technique's shadow maps as the lab's ShadowLocate() numbers them (a cascade, an
+// array slice, an atlas region): its size in texels. Layer i of Layers() is layer id i in HLSL.
+struct ShadowLayer {
+  uint32_t width = 0, height = 0;
+};
+
 struct ShadowStats {
   uint64_t memoryBytes = 0;        // shadow resources
   uint64_t trianglesSubmitted = 0; // in shadow passes, last frame
@@ -100,6 +113,8 @@ class Technique {
   // Binds what ShadowVisibility() reads, into PS registers b2-b5, t0-t15, s0-s3.
   virtual void BindLighting(DeviceContext& ctx) = 0;
   virtual ShadowStats Stats() const = 0;
+  // The layers ShadowLocate() can return, for the lab's utilization metric (valid after Configure).
+  virtual std::vector<ShadowLayer> Layers() const = 0;
 };
 
 // --- Registry (techniques/registry.cpp: one line per technique)

@@ -57,15 +57,17 @@ class BasicTechnique final : public Technique {
     sampler_ = device.CreateSamplerState(smp);
 
     BUFFER_DESC cb;
-    cb.ByteWidth = sizeof(glm::mat4);
+    cb.ByteWidth = sizeof(Constants);
     cb.BindFlags = BIND_CONSTANT_BUFFER;
     constants_ = device.CreateBuffer(cb);
     constants_->SetDebugName("BasicShadow constants");
   }
 
   void RenderShadows(DeviceContext& ctx, SceneDrawer& drawer, const FrameInputs& frame) override {
+    GpuTimer::Scope timed(frame.timer, ctx, "shadow");
     lightViewProj_ = FitToScene(frame.scene->bounds, frame.light.direction);
-    ctx.UpdateSubresource(constants_.get(), 0, nullptr, &lightViewProj_, 0, 0);
+    Constants c{lightViewProj_, glm::vec2(float(resolution_)), glm::vec2(0.0f)};
+    ctx.UpdateSubresource(constants_.get(), 0, nullptr, &c, 0, 0);
 
     // The map is read by the previous frame's lit pass; unbind it before writing, as a D3D11
     // program does (the runtime would do it anyway, with a warning).
@@ -89,6 +91,7 @@ class BasicTechnique final : public Technique {
   }
 
   ShadowStats Stats() const override { return {uint64_t(resolution_) * resolution_ * 4, trianglesSubmitted_}; }
+  std::vector<ShadowLayer> Layers() const override { return {{resolution_, resolution_}}; }
 
  private:
   // An orthographic light frustum around the scene's bounding box.
@@ -103,6 +106,14 @@ class BasicTechnique final : public Technique {
     glm::mat4 proj = glm::orthoRH_ZO(ls.min.x, ls.max.x, ls.min.y, ls.max.y, -ls.max.z, -ls.min.z);
     return proj * view;
   }
+
+  // cbuffer BasicShadow in shaders-hlsl/basic/shadow.hlsli.
+  struct Constants {
+    glm::mat4 lightViewProj;
+    glm::vec2 mapSize;
+    glm::vec2 pad;
+  };
+  static_assert(sizeof(Constants) == 80);
 
   uint32_t resolution_ = 0;
   Ref<Texture2D> map_;

@@ -105,14 +105,46 @@ TEST_P(BasicTechniqueTest, ShadowMatchesAnalyticShadowOfAFloatingBox) {
   if (wrong) WritePng(TestOutputDir() / "floating-box.png", W, H, img.data());
 }
 
-// The lit pass compiles and links for every registered technique on this backend.
+// The lit pass, and the lab's variant of it (which needs ShadowLocate and ShadowTexel from the
+// technique's include), compile and link for every registered technique on this backend; every
+// technique reports its map layers once configured.
 TEST_P(BasicTechniqueTest, LitPassOfEveryTechniqueCreatesOnThisBackend) {
   for (const std::string& name : tech::TechniqueNames()) {
     std::unique_ptr<tech::Technique> t = tech::CreateTechnique(name);
-    auto [vs, ps] = tech::Renderer::CompileLitShaders(*t);
-    EXPECT_NO_THROW(device().CreateVertexShader(vs)) << name;
-    EXPECT_NO_THROW(device().CreatePixelShader(ps)) << name;
+    for (tech::LitPass pass : {tech::LitPass::Normal, tech::LitPass::Lab}) {
+      auto [vs, ps] = tech::Renderer::CompileLitShaders(*t, pass);
+      EXPECT_NO_THROW(device().CreateVertexShader(vs)) << name;
+      EXPECT_NO_THROW(device().CreatePixelShader(ps)) << name;
+    }
+    t->Configure(device(), tech::ParamValues::Parse(name, t->Params(), {}));
+    std::vector<tech::ShadowLayer> layers = t->Layers();
+    EXPECT_FALSE(layers.empty()) << name;
+    for (const tech::ShadowLayer& l : layers) EXPECT_TRUE(l.width > 0 && l.height > 0) << name;
   }
+}
+
+// The lab's colour target holds what the normal lit pass draws, so the lab's pictures show what
+// users see.
+TEST_P(BasicTechniqueTest, LabLitPassDrawsTheSameColourAsTheNormalOne) {
+  const uint32_t W = 96, H = 64;
+  scene::Scene s = scene::MakeBuiltinScene("default");
+  std::unique_ptr<tech::Technique> t = tech::CreateTechnique("basic");
+  t->Configure(device(), tech::ParamValues::Parse("basic", t->Params(), {{"resolution", "512"}}));
+  tech::RendererOptions ro;
+  ro.lab = true;
+  tech::Renderer r(device(), s, std::move(t), W, H, ro);
+  r.RenderFrame(s.camera, s.light);
+  std::vector<uint8_t> normal = r.ReadColor();
+  r.RenderFrame(s.camera, s.light, tech::LitPass::Lab);
+  tech::LabBuffers lab = r.ReadLab();
+  EXPECT_EQ(CompareImages("lab-colour", W, H, normal.data(), lab.color.data(), 0), 0u);
+  size_t drawn = 0, inMap = 0;
+  for (size_t i = 0; i < lab.size(); ++i) {
+    drawn += lab.drawn(i);
+    inMap += lab.receiving(i) && lab.lookup[i].x == 0.0f && lab.lookup[i].w > 0.0f;
+  }
+  EXPECT_GT(drawn, lab.size() / 2);
+  EXPECT_GT(inMap, lab.size() / 4) << "receiving pixels read layer 0 with a positive texel density";
 }
 
 // Every .hlsl file declares its entry points with `//! <target> <entry>` lines; each compiles

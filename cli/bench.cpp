@@ -1,0 +1,121 @@
+// `shadowport bench` (runs techniques against the reference, writes results JSON and pictures) and
+// `shadowport report` (charts and an HTML page from results, by eval/report/report.py).
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <stdexcept>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "bench.h"
+#include "cli.h"
+
+namespace sp::cli {
+
+namespace {
+
+std::vector<std::string> SplitList(const std::string& text, const std::string& option) {
+  std::vector<std::string> out;
+  size_t start = 0;
+  while (true) {
+    size_t comma = text.find(',', start);
+    std::string item = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    if (item.empty()) throw std::invalid_argument("--" + option + " '" + text + "' has an empty item");
+    out.push_back(item);
+    if (comma == std::string::npos) return out;
+    start = comma + 1;
+  }
+}
+
+uint64_t ParseCount(const std::string& text, const std::string& option, uint64_t min, uint64_t max) {
+  size_t used = 0;
+  unsigned long long v = 0;
+  try {
+    v = std::stoull(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != text.size() || text[0] == '-' || v < min || v > max)
+    throw std::invalid_argument("--" + option + " '" + text + "' must be an integer in [" + std::to_string(min) + ", " + std::to_string(max) + "]");
+  return v;
+}
+
+}  // namespace
+
+int RunBench(const Args& a) {
+  a.expectOnly({"scene", "technique", "backend", "size", "frames", "param", "triangles", "path", "out", "reference-cache", "validate"});
+  if (!a.positionals().empty()) throw std::invalid_argument("unexpected argument '" + a.positionals()[0] + "'");
+  bench::BenchOptions o;
+  o.scenes = SplitList(a.get("scene", "default"), "scene");
+  o.techniques = SplitList(a.get("technique", "basic"), "technique");
+  std::string backend = a.get("backend", "both");
+  if (backend == "both") {
+    o.backends = {Backend::Vulkan, Backend::OpenGL};
+  } else {
+    Backend b;
+    if (!ParseBackend(backend, &b)) throw std::invalid_argument("--backend must be vulkan, gl or both (got '" + backend + "')");
+    o.backends = {b};
+  }
+  ParseSize(a.get("size", "640x360"), &o.width, &o.height);
+  o.frames = uint32_t(ParseCount(a.get("frames", "8"), "frames", 1, 100000));
+  // --param k=v1,v2 sweeps: every combination of the listed values is a run.
+  for (const auto& [k, v] : ParseParams(a.getAll("param"))) o.params[k] = SplitList(v, "param " + k);
+  if (a.has("triangles")) o.triangles = ParseCount(a.get("triangles"), "triangles", 1, scene::kMaxTargetTriangles);
+  o.path = a.get("path", "slow-pan");
+  o.out = a.get("out", "out/bench/results.json");
+  o.referenceCache = a.get("reference-cache", "");
+  o.validate = a.has("validate");
+
+  nlohmann::json doc = bench::RunBench(o, [](const std::string& line) {
+    std::fprintf(stderr, "bench: %s\n", line.c_str());
+    std::fflush(stderr);
+  });
+  uint64_t validationErrors = 0;
+  for (const auto& run : doc["runs"]) validationErrors += run["checks"]["validation_errors"].get<uint64_t>();
+  std::printf("bench: %zu runs -> %s\n", doc["runs"].size(), o.out.string().c_str());
+  return validationErrors ? 1 : 0;
+}
+
+int RunReport(const Args& a) {
+  a.expectOnly({"out", "title"});
+  if (a.positionals().empty()) throw std::invalid_argument("no results file given (usage: shadowport report results.json... --out dir)");
+  if (!a.has("out")) throw std::invalid_argument("--out dir is required");
+  // Debian's interpreter first: python3-matplotlib installs into it, while a python3 earlier on
+  // PATH (pyenv, a venv) usually lacks matplotlib.
+  std::string python;
+  if (const char* e = std::getenv("SHADOWPORT_PYTHON"); e && *e) python = e;
+  else if (std::filesystem::exists("/usr/bin/python3")) python = "/usr/bin/python3";
+  else if (std::string(SP_REPORT_PYTHON).size()) python = SP_REPORT_PYTHON;
+  else python = "python3";
+  std::string script = SP_REPORT_SCRIPT;
+  if (const char* e = std::getenv("SHADOWPORT_REPORT_SCRIPT"); e && *e) script = e;
+  if (script.empty() || !std::filesystem::exists(script)) throw std::runtime_error("report script not found ('" + script + "'); set SHADOWPORT_REPORT_SCRIPT");
+
+  std::vector<std::string> argv = {python, script};
+  for (const std::string& p : a.positionals()) argv.push_back(p);
+  argv.push_back("--out");
+  argv.push_back(a.get("out"));
+  if (a.has("title")) {
+    argv.push_back("--title");
+    argv.push_back(a.get("title"));
+  }
+  std::vector<char*> cargv;
+  for (std::string& s : argv) cargv.push_back(s.data());
+  cargv.push_back(nullptr);
+  std::fflush(stdout);
+  pid_t pid = fork();
+  if (pid < 0) throw std::runtime_error("cannot start " + python);
+  if (pid == 0) {
+    execvp(cargv[0], cargv.data());
+    std::fprintf(stderr, "shadowport report: cannot run %s\n", cargv[0]);
+    _exit(127);
+  }
+  int status = 0;
+  waitpid(pid, &status, 0);
+  int rc = WIFEXITED(status) ? WEXITSTATUS(status) : 1;
+  if (rc != 0) return rc;
+  std::printf("report: open %s\n", (std::filesystem::path(a.get("out")) / "index.html").string().c_str());
+  return 0;
+}
+
+}  // namespace sp::cli

@@ -1,0 +1,175 @@
+// One bench run: the timing phase, then the measured frames (see bench.h).
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+#include "bench.h"
+
+namespace sp::bench {
+
+namespace {
+
+double Median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+// The frames after warm-up; all of them when there are too few to drop any.
+template <class T>
+std::vector<T> AfterWarmup(const std::vector<T>& v) {
+  if (v.size() <= kWarmupFrames) return v;
+  return std::vector<T>(v.begin() + kWarmupFrames, v.end());
+}
+
+std::string Describe(const RunSpec& s) {
+  std::string t = s.scene->name + " / " + (s.technique.empty() ? std::string("(custom)") : s.technique);
+  for (const auto& [k, v] : s.params) t += " " + k + "=" + v;
+  return t + " / " + BackendName(s.backend);
+}
+
+// The reference for one lab frame: one visibility byte per pixel (receiving pixels only).
+std::vector<uint8_t> Reference(eval::ReferenceCache& cache, const tech::LabBuffers& lab, const eval::ReferenceLight& light, bool* cached) {
+  size_t n = lab.size();
+  std::vector<glm::vec3> pos(n), nrm(n);
+  std::vector<uint8_t> valid(n), out(n, 0);
+  for (size_t i = 0; i < n; ++i) {
+    pos[i] = glm::vec3(lab.position[i]);
+    nrm[i] = glm::vec3(lab.normal[i]);
+    bool finite = std::isfinite(pos[i].x) && std::isfinite(pos[i].y) && std::isfinite(pos[i].z) && glm::length(nrm[i]) > 0.5f;
+    valid[i] = lab.receiving(i) && finite ? 1 : 0;
+  }
+  *cached = cache.Visibility(pos.data(), nrm.data(), valid.data(), n, light, out.data());
+  return out;
+}
+
+std::vector<float> AsFloat(const std::vector<uint8_t>& v) { return std::vector<float>(v.begin(), v.end()); }
+
+}  // namespace
+
+RunResult RunOne(const RunSpec& spec, eval::ReferenceCache& reference, const Progress& progress) {
+  auto say = [&](const std::string& s) {
+    if (progress) progress(s);
+  };
+  const scene::Scene& scene = *spec.scene;
+  std::unique_ptr<tech::Technique> technique = spec.make ? spec.make() : tech::CreateTechnique(spec.technique);
+  tech::ParamValues params = tech::ParamValues::Parse(technique->Name(), technique->Params(), spec.params);
+
+  RunResult r;
+  r.scene = scene.name;
+  r.technique = technique->Name();
+  r.backend = BackendName(spec.backend);
+  r.params = params.all();
+  r.width = spec.width;
+  r.height = spec.height;
+  r.frames = spec.frames;
+  r.path = spec.path ? spec.path->name : "static";
+  r.sceneTriangles = scene.triangleCount();
+  r.light = scene.light;
+
+  DeviceDesc dd;
+  dd.backend = spec.backend;
+  dd.debug = spec.validate;  // off for speed unless asked
+  Ref<Device> device = CreateDevice(dd);
+  DeviceContext& ctx = *device->GetImmediateContext();
+  r.device = device->Info().deviceName;
+  technique->Configure(*device, params);
+  tech::RendererOptions ro;
+  ro.lab = true;
+  tech::Renderer renderer(*device, scene, std::move(technique), spec.width, spec.height, ro);
+  tech::Technique& tech = renderer.technique();
+
+  auto cameraAt = [&](uint32_t i) {
+    if (!spec.path) return scene.camera;
+    return spec.path->at(spec.frames > 1 ? double(i) / double(spec.frames - 1) : 0.0);
+  };
+  std::string what = Describe(spec);
+
+  // --- 1. Timing: the normal lit pass, nothing read back.
+  say(what + ": timing " + std::to_string(spec.frames) + " frames");
+  tech::GpuTimer timer(*device);
+  renderer.SetGpuTimer(&timer);
+  std::vector<double> triangles;
+  for (uint32_t i = 0; i < spec.frames; ++i) {
+    // One frame at a time: the GPU is idle when a frame starts, so its CPU time holds no wait for
+    // (and, on a software device, no competition with) the previous frame's GPU work.
+    ctx.WaitIdle();
+    auto t0 = std::chrono::steady_clock::now();
+    renderer.RenderFrame(cameraAt(i), scene.light);
+    ctx.Flush();  // what Present would do: submission is part of a frame's CPU cost
+    r.cpuSeries.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    triangles.push_back(double(tech.Stats().trianglesSubmitted));
+  }
+  std::vector<tech::FrameTimes> times = timer.Collect(ctx, true);
+  renderer.SetGpuTimer(nullptr);
+  r.disjointFrames = timer.DisjointFrames();
+  for (const tech::FrameTimes& t : times) r.gpuTotalSeries.push_back(t.at("total"));
+  std::map<std::string, std::vector<double>> perPass;
+  for (const tech::FrameTimes& t : AfterWarmup(times))
+    for (const auto& [pass, ms] : t) perPass[pass].push_back(ms);
+  for (const auto& [pass, v] : perPass) r.gpuMs[pass] = Median(v);
+  r.cpuMs = Median(AfterWarmup(r.cpuSeries));
+  r.shadowTriangles = uint64_t(Median(AfterWarmup(triangles)));
+  r.shadowMemoryBytes = tech.Stats().memoryBytes;
+
+  // --- 2. Measurement: the lab's lit pass, read back and judged.
+  eval::ReferenceLight light = eval::ReferenceLight::FromScene(scene.light);
+  // The cache's tracer uses the default options (bench.cpp), so its resolution is known without
+  // building a tracer when every frame comes from the cache.
+  r.referenceEpsilon = eval::ReferenceOptions{}.relativeEpsilon * eval::ReferenceSceneScale(scene);
+  eval::LogHistogram density;
+  double utilizationSum = 0;
+  tech::LabBuffers prev;
+  std::vector<float> prevReference;
+  for (uint32_t i = 0; i < spec.frames; ++i) {
+    scene::Camera cam = cameraAt(i);
+    tech::LabBuffers before;
+    if (i > 0) {
+      renderer.RenderLitPass(cam, scene.light, tech::LitPass::Lab);
+      before = renderer.ReadLab();
+    }
+    renderer.RenderFrame(cam, scene.light, tech::LitPass::Lab);
+    tech::LabBuffers now = renderer.ReadLab();
+    auto t0 = std::chrono::steady_clock::now();
+    bool cached = false;
+    std::vector<uint8_t> ref = Reference(reference, now, light, &cached);
+    double traceMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+
+    eval::Accuracy a = eval::MeasureAccuracy(now, ref.data());
+    r.accuracy.add(a);
+    r.misclassifiedSeries.push_back(a.misclassifiedPct());
+    eval::AddTexelDensity(now, density);
+    utilizationSum += eval::MeasureUtilization(now, tech.Layers());
+    std::vector<float> refF = AsFloat(ref);
+    std::ostringstream line;
+    line << what << ": frame " << (i + 1) << "/" << spec.frames << ", misclassified " << a.misclassifiedPct() << "%, reference "
+         << (cached ? "cached" : "traced in " + std::to_string(int(traceMs)) + " ms");
+    if (i > 0) {
+      eval::Flicker f = eval::MeasureFlicker(now, before);
+      r.flicker.add(f);
+      r.flickerSeries.push_back(f.mean());
+      r.flickerReprojected.add(eval::MeasureReprojectedFlicker(prev, prev.visibility.data(), now, now.visibility.data()));
+      r.flickerReprojectedReference.add(eval::MeasureReprojectedFlicker(prev, prevReference.data(), now, refF.data()));
+      line << ", flicker " << f.mean();
+    }
+    say(line.str());
+    if (i == 0) {
+      r.firstFrame = now;
+      r.firstReference = ref;
+    }
+    prev = std::move(now);
+    prevReference = std::move(refF);
+  }
+  r.texelsPerPixelMedian = density.percentile(0.5);
+  r.texelsPerPixelP05 = density.percentile(0.05);
+  r.densitySamples = density.count();
+  r.utilization = spec.frames ? utilizationSum / spec.frames : 0.0;
+  ctx.ClearState();
+  ctx.WaitIdle();
+  r.validationErrors = device->ValidationErrorCount();
+  return r;
+}
+
+}  // namespace sp::bench

@@ -1,0 +1,102 @@
+// The bench runner: renders techniques along a camera path on a backend, measures them against the
+// ray-traced reference (eval/metrics) and writes `{"runs": [...]}` results for `shadowport report`.
+//
+// One run = one (scene, technique, parameters, backend):
+//  1. timing: `frames` frames along the path with the normal lit pass, GPU time per pass from
+//     timestamp queries (GpuTimer) and CPU time of RenderFrame + Flush (recording and submission),
+//     one frame at a time (the GPU idle when each starts); medians over the frames after the first
+//     kWarmupFrames;
+//  2. measurement: the same frames again with the lab's lit pass, read back, judged against the
+//     reference (cached on disk) for accuracy, texel density and utilization; before each frame
+//     after the first, the lab lit pass is drawn once more with the new camera and the previous
+//     frame's shadow state, which gives the shadow term of the previous frame at exactly this
+//     frame's surface points (flicker).
+// The two phases are separate so the lab's extra render targets and read-backs never inflate the
+// timings.
+#pragma once
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "metrics.h"
+#include "reference.h"
+
+namespace sp::bench {
+
+constexpr uint32_t kWarmupFrames = 2;
+
+using Progress = std::function<void(const std::string&)>;
+
+struct RunSpec {
+  const scene::Scene* scene = nullptr;
+  std::string technique;                                     // registry name
+  std::function<std::unique_ptr<tech::Technique>()> make;    // instead of the registry (tests)
+  std::map<std::string, std::string> params;                 // as given; validated against the technique
+  Backend backend = Backend::Vulkan;
+  uint32_t width = 640, height = 360, frames = 8;
+  const scene::CameraPath* path = nullptr;                   // null: the scene camera, static
+  bool validate = false;                                     // validation layers / GL debug output
+};
+
+struct RunResult {
+  std::string scene, technique, backend, device, path;
+  std::map<std::string, std::string> params;  // every parameter, defaults filled in
+  uint32_t width = 0, height = 0, frames = 0;
+  uint64_t sceneTriangles = 0;
+
+  eval::Accuracy accuracy;
+  double texelsPerPixelMedian = 0, texelsPerPixelP05 = 0;
+  uint64_t densitySamples = 0;
+  double utilization = 0;                   // mean over frames
+  eval::Flicker flicker;                    // exact, same world points
+  eval::Flicker flickerReprojected, flickerReprojectedReference;
+  std::map<std::string, double> gpuMs;      // pass -> median ms, and "total"
+  double cpuMs = 0;                         // median
+  uint64_t shadowMemoryBytes = 0, shadowTriangles = 0;
+
+  std::vector<double> flickerSeries;        // frames 1..N-1
+  std::vector<double> misclassifiedSeries, gpuTotalSeries, cpuSeries;  // frames 0..N-1
+
+  tech::LabBuffers firstFrame;              // frame 0 (the path's start), for the pictures
+  std::vector<uint8_t> firstReference;
+  scene::DirectionalLight light;
+
+  uint64_t validationErrors = 0, disjointFrames = 0;
+  float referenceEpsilon = 0;
+};
+
+// Runs one (scene, technique, parameters, backend). Throws std::invalid_argument for an unknown
+// technique or invalid parameters (listing the valid ones).
+RunResult RunOne(const RunSpec& spec, eval::ReferenceCache& reference, const Progress& progress = {});
+
+// --- The whole bench: what `shadowport bench` does
+
+struct BenchOptions {
+  std::vector<std::string> scenes = {"default"};
+  std::vector<std::string> techniques = {"basic"};
+  std::vector<Backend> backends = {Backend::Vulkan, Backend::OpenGL};
+  uint32_t width = 640, height = 360, frames = 8;
+  // name -> values; several values make a sweep (every combination is a run).
+  std::map<std::string, std::vector<std::string>> params;
+  uint64_t triangles = 0;  // scene size knob, built-in scenes only
+  std::string path = "slow-pan";
+  std::filesystem::path out = "results.json";
+  std::filesystem::path referenceCache;  // empty: eval::DefaultReferenceCacheDir()
+  bool validate = false;
+};
+
+// Checks scene, technique and parameter names and values before anything runs; throws
+// std::invalid_argument listing the valid names.
+void ValidateBenchOptions(const BenchOptions& options);
+// Runs everything, writes options.out and the images beside it (<stem>-images/), returns the
+// document written.
+nlohmann::json RunBench(const BenchOptions& options, const Progress& progress);
+
+// One run as a results record; `images` maps kind -> path relative to the results file.
+nlohmann::json RunToJson(const RunResult& r, const std::map<std::string, std::string>& images);
+
+}  // namespace sp::bench

@@ -1,0 +1,110 @@
+// The lab's metrics, computed on the CPU from what the lab's lit pass wrote (tech::LabBuffers) and
+// the ray-traced reference visibility of the same pixels (eval/reference). Every metric is over
+// the pixels the lab judges: surfaces drawn and facing the light (LabBuffers::receiving), where
+// shading uses the shadow term.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <vector>
+
+#include "renderer.h"
+
+namespace sp::eval {
+
+// A filtered technique's visibility counts as lit from this value up.
+constexpr float kLitThreshold = 0.5f;
+
+// --- Accuracy against the reference (1 = lit, 0 = shadowed per pixel)
+
+struct Accuracy {
+  uint64_t receiving = 0;    // pixels judged
+  uint64_t falseLit = 0;     // lit although the reference is shadowed: leaks, peter-panning
+  uint64_t falseShadow = 0;  // shadowed although the reference is lit: acne, over-darkening
+  double absErrorSum = 0;    // sum of |visibility - reference|
+
+  void add(const Accuracy& o);
+  double misclassifiedPct() const { return Pct(falseLit + falseShadow); }
+  double falseLitPct() const { return Pct(falseLit); }
+  double falseShadowPct() const { return Pct(falseShadow); }
+  double meanAbsError() const { return receiving ? absErrorSum / double(receiving) : 0.0; }
+
+ private:
+  double Pct(uint64_t n) const { return receiving ? 100.0 * double(n) / double(receiving) : 0.0; }
+};
+
+Accuracy MeasureAccuracy(const tech::LabBuffers& lab, const uint8_t* reference);
+
+// --- Perspective aliasing: texels per pixel (LabBuffers::lookup.w)
+
+// Percentiles of positive values over many frames in fixed memory: 512 logarithmic bins per
+// octave from 2^-24 to 2^24 (values beyond go to the end bins), interpolated within a bin and
+// clamped to the smallest and largest value added, so a percentile is within one bin (0.14%) of
+// the exact one, and exact where all values are equal.
+class LogHistogram {
+ public:
+  LogHistogram();
+  void add(double value);
+  void add(const LogHistogram& o);
+  uint64_t count() const { return count_; }
+  // p in [0, 1]; 0 when empty.
+  double percentile(double p) const;
+
+ private:
+  static constexpr int kPerOctave = 512, kMinExp = -24, kMaxExp = 24;
+  std::vector<uint64_t> bins_;
+  uint64_t count_ = 0;
+  double min_ = 0, max_ = 0;
+};
+
+// Adds the texels per pixel of receiving pixels whose lookup read a map (layer >= 0).
+void AddTexelDensity(const tech::LabBuffers& lab, LogHistogram& histogram);
+
+// --- Utilization: fraction of all layers' texels that some receiving pixel's lookup is centred in.
+double MeasureUtilization(const tech::LabBuffers& lab, const std::vector<tech::ShadowLayer>& layers);
+
+// --- Temporal stability
+
+struct Flicker {
+  uint64_t pixels = 0;  // pixels compared
+  double sum = 0;       // of |change of the shadow term|
+  uint64_t unmatched = 0;
+
+  void add(const Flicker& o);
+  double mean() const { return pixels ? sum / double(pixels) : 0.0; }
+};
+
+// The change of the shadow term at exactly the same world points: `now` is frame t; `before` is
+// the lit pass drawn with frame t's camera but frame t-1's shadow state (Renderer::RenderLitPass
+// before frame t's RenderFrame), so both hold the same surface points. Pixels whose positions
+// differ bit for bit (which same-camera rasterization never gives) are counted in `unmatched`
+// and left out.
+Flicker MeasureFlicker(const tech::LabBuffers& now, const tech::LabBuffers& before);
+
+// The same by reprojection, as a viewer would see it: each receiving pixel of `cur` is projected
+// into `prev`'s camera; the nearest pixel there counts when it receives too and its distance from
+// the camera matches within kReprojectionTolerance of that distance. Compares curValue[i] with
+// prevValue[j] (the technique's visibility, or the reference's). Sampling the nearest pixel of the
+// other frame moves the compared point by up to half a pixel, so even the reference gets a
+// non-zero value near shadow edges: the noise floor of this method.
+constexpr float kReprojectionTolerance = 0.02f;
+Flicker MeasureReprojectedFlicker(const tech::LabBuffers& prev, const float* prevValue, const tech::LabBuffers& cur,
+                                  const float* curValue);
+
+// --- Images (RGBA8, width x (height + legend)); a legend strip is drawn under the picture.
+
+// Receiving pixels correct in grey, false lit in red, false shadow in blue (partial errors of
+// filtered techniques as a partial tint); the rest darker grey.
+std::vector<uint8_t> ErrorHeatMap(const tech::LabBuffers& lab, const uint8_t* reference, uint32_t* imageHeight);
+// Texels per pixel in octave bands from <= 1/32 (dark red, undersampled) through 1 (white) to
+// >= 32 (dark blue, oversampled).
+std::vector<uint8_t> TexelDensityHeatMap(const tech::LabBuffers& lab, uint32_t* imageHeight);
+// The frame shaded as the lit pass shades it, with the reference's visibility (no legend).
+std::vector<uint8_t> ReferenceImage(const tech::LabBuffers& lab, const uint8_t* reference, const scene::DirectionalLight& light);
+// The band colours of TexelDensityHeatMap, index 0 (<= 1/32) to 10 (>= 32).
+std::array<uint8_t, 3> TexelDensityColor(float texelsPerPixel);
+
+// Writes an RGBA8 PNG; throws std::runtime_error naming the file.
+void WritePng(const std::filesystem::path& path, uint32_t width, uint32_t height, const uint8_t* rgba);
+
+}  // namespace sp::eval
