@@ -13,7 +13,7 @@ const char* StatusName(Status s) {
   switch (s) {
     case Status::Pass: return "pass";
     case Status::Fail: return "FAIL";
-    case Status::Unsupported: return "not supported by driver";
+    case Status::Unsupported: return "not supported";
     case Status::Deviation: return "driver deviation";
   }
   return "?";
@@ -147,23 +147,26 @@ std::string FormatMarkdown(const std::vector<ProbeRun>& runs) {
   s << "\n|---|---|";
   for (size_t i = 0; i < backends.size(); ++i) s << "---|";
   s << "\n";
-  size_t pass = 0, total = 0;
+  size_t pass = 0, total = 0, deviations = 0, unsupported = 0;
   for (auto& [probe, byBackend] : Table(runs)) {
     s << "| " << probe->group << " | " << probe->name << " |";
     for (Backend b : backends) {
       auto it = byBackend.find(b);
       s << " " << (it == byBackend.end() ? "-" : Cell(it->second->result));
-      if (it != byBackend.end() && (it->second->result.status == Status::Fail || it->second->result.status == Status::Deviation))
+      if (it != byBackend.end() && it->second->result.status != Status::Pass)
         s << ": " << it->second->result.detail;
       s << " |";
       if (it != byBackend.end()) {
         ++total;
         pass += it->second->result.status == Status::Pass;
+        deviations += it->second->result.status == Status::Deviation;
+        unsupported += it->second->result.status == Status::Unsupported;
       }
     }
     s << "\n";
   }
-  s << "\n" << pass << " of " << total << " probe runs pass.\n";
+  s << "\n" << pass << " of " << total << " probe runs pass; " << deviations << " show a bounded driver deviation, " << unsupported
+    << " are not supported, " << (total - pass - deviations - unsupported) << " fail.\n";
   return s.str();
 }
 
