@@ -43,8 +43,8 @@ def unique_slugs(names):
 
 
 class ImageCopier:
-    """Copies each distinct source image once into out/images/, keeping its file name unless
-    another source already took it."""
+    """Copies each distinct source image once into out/images/ as <folder>-<file name>, numbered
+    if another source already took that name."""
 
     def __init__(self, out_dir):
         self.dir = out_dir / "images"
@@ -56,9 +56,11 @@ class ImageCopier:
             return self.copied[source]
         if not source.is_file():
             return None
-        name, n = source.name, 2
+        # Bench writes one folder per scene: keep the scene in the name (default-basic-gl-color.png).
+        stem = f"{source.parent.name}-{source.stem}" if source.parent.name else source.stem
+        name, n = f"{stem}{source.suffix}", 2
         while name.lower() in self.names:
-            name = f"{source.stem}-{n}{source.suffix}"
+            name = f"{stem}-{n}{source.suffix}"
             n += 1
         self.names.add(name.lower())
         self.dir.mkdir(parents=True, exist_ok=True)
