@@ -88,4 +88,27 @@ ShaderBytecode CompileInline(const std::string& source, const std::string& name,
   return hlsl::CompileSource(source, name, o);
 }
 
+RectDrawer::RectDrawer(Device& dev) {
+  const char* vs = R"(
+cbuffer Rect : register(b13) { float4 rect; float2 size; float depth; float pad; };
+float4 main(uint id : SV_VertexID) : SV_Position {
+  float2 corner = float2((id == 1 || id == 2 || id == 4) ? 1 : 0, (id == 2 || id == 4 || id == 5) ? 1 : 0);
+  float2 p = lerp(rect.xy, rect.zw, corner);
+  return float4(p.x / size.x * 2 - 1, 1 - p.y / size.y * 2, depth, 1);
+}
+)";
+  vs_ = dev.CreateVertexShader(CompileInline(vs, "gpu-util/rect.hlsl", "vs_5_0", "main"));
+  constants_ = MakeBuffer(dev, BIND_CONSTANT_BUFFER, nullptr, 32);
+}
+
+void RectDrawer::Draw(DeviceContext& ctx, float x0, float y0, float x1, float y1, float w, float h, float depth) {
+  const float c[8] = {x0, y0, x1, y1, w, h, depth, 0};
+  ctx.UpdateSubresource(constants_.get(), 0, nullptr, c, 0, 0);
+  ctx.VSSetShader(vs_.get());
+  ctx.VSSetConstantBuffers(13, {constants_.get()});
+  ctx.IASetInputLayout(nullptr);
+  ctx.IASetPrimitiveTopology(PRIMITIVE_TOPOLOGY_TRIANGLELIST);
+  ctx.Draw(6, 0);
+}
+
 }  // namespace sp::gpu

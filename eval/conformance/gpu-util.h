@@ -29,4 +29,18 @@ ShaderBytecode CompileInline(const std::string& source, const std::string& name,
 // A vertex shader drawing a full-viewport triangle from SV_VertexID (no vertex buffers).
 extern const char* const kFullscreenVS;
 
+// Draws the rectangle (x0, y0)-(x1, y1), in pixels from the top left, of a w x h target at
+// `depth` as two triangles from SV_VertexID; its constants use VS slot b13.
+class RectDrawer {
+ public:
+  explicit RectDrawer(Device& dev);
+  // Binds the vertex shader, its constants and the topology (no input layout), then draws.
+  void Draw(DeviceContext& ctx, float x0, float y0, float x1, float y1, float w, float h, float depth = 0.5f);
+  VertexShader* vs() const { return vs_.get(); }
+
+ private:
+  Ref<VertexShader> vs_;
+  Ref<Buffer> constants_;
+};
+
 }  // namespace sp::gpu

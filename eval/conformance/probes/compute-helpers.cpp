@@ -106,29 +106,6 @@ DrawTarget MakeDrawTarget(Device& dev, uint32_t w, uint32_t h, FORMAT format) {
   return t;
 }
 
-RectDrawer::RectDrawer(Device& dev) {
-  const char* vs = R"(
-cbuffer Rect : register(b13) { float4 rect; float2 size; float depth; float pad; };
-float4 main(uint id : SV_VertexID) : SV_Position {
-  float2 corner = float2((id == 1 || id == 2 || id == 4) ? 1 : 0, (id == 2 || id == 4 || id == 5) ? 1 : 0);
-  float2 p = lerp(rect.xy, rect.zw, corner);
-  return float4(p.x / size.x * 2 - 1, 1 - p.y / size.y * 2, depth, 1);
-}
-)";
-  vs_ = MakeVS(dev, vs, "rect");
-  constants_ = gpu::MakeBuffer(dev, BIND_CONSTANT_BUFFER, nullptr, 32);
-}
-
-void RectDrawer::Draw(DeviceContext& ctx, float x0, float y0, float x1, float y1, uint32_t w, uint32_t h, float depth) {
-  const float c[8] = {x0, y0, x1, y1, float(w), float(h), depth, 0};
-  ctx.UpdateSubresource(constants_.get(), 0, nullptr, c, 0, 0);
-  ctx.VSSetShader(vs_.get());
-  ctx.VSSetConstantBuffers(13, {constants_.get()});
-  ctx.IASetInputLayout(nullptr);
-  ctx.IASetPrimitiveTopology(PRIMITIVE_TOPOLOGY_TRIANGLELIST);
-  ctx.Draw(6, 0);
-}
-
 Result Mismatches::Finish(const std::string& unit) const {
   if (count_ == 0) return Pass(0, unit, 0);
   std::ostringstream s;

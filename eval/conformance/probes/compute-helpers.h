@@ -62,18 +62,7 @@ struct DrawTarget {
 };
 DrawTarget MakeDrawTarget(Device& dev, uint32_t w, uint32_t h, FORMAT format);
 
-// Draws axis-aligned rectangles (pixel coordinates, y down) as two triangles from SV_VertexID;
-// the rectangle comes from a constant buffer at VS slot b13, so pixel shaders keep b0-b12.
-class RectDrawer {
- public:
-  explicit RectDrawer(Device& dev);
-  // Binds the vertex shader, its constants and the topology, then draws 6 vertices.
-  void Draw(DeviceContext& ctx, float x0, float y0, float x1, float y1, uint32_t targetW, uint32_t targetH, float depth = 0.5f);
-
- private:
-  Ref<VertexShader> vs_;
-  Ref<Buffer> constants_;
-};
+using gpu::RectDrawer;
 
 // Accumulates exact comparisons; the result's error is the number of wrong values.
 class Mismatches {
