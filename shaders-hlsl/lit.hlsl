@@ -38,7 +38,9 @@ VSOut VSMain(VSIn i) {
 float4 PSMain(VSOut i) : SV_Target {
   float3 n = normalize(i.normal);
   float ndotl = saturate(dot(n, toLight));
-  float visibility = ndotl > 0.0 ? ShadowVisibility(i.worldPos, n, i.pos) : 0.0;
+  // Unconditionally, in uniform control flow: lookups may take derivatives (csm's receiver plane).
+  // Where ndotl is 0 the visibility does not change the colour.
+  float visibility = ShadowVisibility(i.worldPos, n, i.pos);
   float3 color = albedo * (ambient + lightColor * ndotl * visibility);
   return float4(color, 1.0);
 }
@@ -73,7 +75,7 @@ LabOut PSMain(VSOut i) {
     texelsPerPixel = sqrt(abs(jx.x * jy.y - jx.y * jy.x));
   }
   LabOut o;
-  // ndotl is 0 where the normal variant skips the lookup, so the colour is the same.
+  // The same expression as the normal variant, so the colour is the same.
   o.color = float4(albedo * (ambient + lightColor * ndotl * visibility), 1.0);
   o.position = float4(i.worldPos, 1.0);
   o.normal = float4(n, ndotl);

@@ -14,6 +14,7 @@ std::string ListNames(const std::vector<ParamSpec>& specs) {
 }
 
 std::string Describe(const ParamSpec& p) {
+  if (p.kind == ParamSpec::Text) return p.help;
   if (p.kind == ParamSpec::Choice) {
     std::string s;
     for (const std::string& c : p.choices) s += (s.empty() ? "" : "|") + c;
@@ -31,6 +32,7 @@ std::string Describe(const ParamSpec& p) {
 
 void Check(const std::string& technique, const ParamSpec& p, const std::string& v) {
   auto bad = [&]() { throw std::invalid_argument("technique '" + technique + "': " + p.name + "=" + v + " is not valid; " + p.name + " takes " + Describe(p)); };
+  if (p.kind == ParamSpec::Text) return;
   if (p.kind == ParamSpec::Choice) {
     for (const std::string& c : p.choices)
       if (c == v) return;

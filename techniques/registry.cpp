@@ -7,6 +7,7 @@
 namespace sp::tech {
 
 std::unique_ptr<Technique> MakeBasicTechnique();
+std::unique_ptr<Technique> MakeCsmTechnique();
 
 namespace {
 struct Entry {
@@ -16,6 +17,7 @@ struct Entry {
 
 const Entry kTechniques[] = {
     {"basic", MakeBasicTechnique},
+    {"csm", MakeCsmTechnique},
 };
 }  // namespace
 

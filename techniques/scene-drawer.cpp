@@ -99,6 +99,10 @@ void SceneDrawer::BindConstants(DeviceContext& ctx, ShaderStage stage) {
 }
 
 uint64_t SceneDrawer::DrawDepth(DeviceContext& ctx, const glm::mat4& viewProj) {
+  return DrawDepth(ctx, viewProj, [](uint32_t) { return true; });
+}
+
+uint64_t SceneDrawer::DrawDepth(DeviceContext& ctx, const glm::mat4& viewProj, const std::function<bool(uint32_t instance)>& keep) {
   SetFrame(ctx, viewProj, nullptr);
   gpu_.BindGeometry(ctx);
   ctx.IASetInputLayout(depthLayout_.get());
@@ -107,6 +111,7 @@ uint64_t SceneDrawer::DrawDepth(DeviceContext& ctx, const glm::mat4& viewProj) {
   BindConstants(ctx, ShaderStage::Vertex);
   uint64_t triangles = 0;
   for (const scene::DrawItem& d : gpu_.draws()) {
+    if (!keep(d.instance)) continue;
     SetObject(ctx, d.instance);
     ctx.DrawIndexed(d.indexCount, d.firstIndex, d.baseVertex);
     triangles += d.indexCount / 3;

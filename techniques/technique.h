@@ -8,6 +8,7 @@
 //  - times its own passes with FrameInputs::timer ("shadow", "analysis", "blur", ...).
 // Adding a technique = a folder in techniques/, its HLSL in shaders-hlsl/, one registry line.
 #pragma once
+#include <functional>
 #include <glm/glm.hpp>
 #include <map>
 #include <memory>
@@ -23,7 +24,8 @@ namespace sp::tech {
 // --- Parameters
 
 struct ParamSpec {
-  enum Kind { Int, Float, Choice } kind = Int;
+  // Text: any value; the technique validates it in Configure (e.g. a list of numbers).
+  enum Kind { Int, Float, Choice, Text } kind = Int;
   std::string name;
   std::string help;
   std::string defaultValue;
@@ -74,6 +76,8 @@ class SceneDrawer {
   // Binds the depth-only pipeline and draws every instance; returns triangles submitted. The
   // caller has set render targets, viewport and rasterizer state.
   uint64_t DrawDepth(DeviceContext& ctx, const glm::mat4& viewProj);
+  // The same for the instances `keep` accepts (a technique's culling against its light frustum).
+  uint64_t DrawDepth(DeviceContext& ctx, const glm::mat4& viewProj, const std::function<bool(uint32_t instance)>& keep);
   // Writes Frame (b0) for a pass and Object (b1) per instance; used by the lit pass too.
   void SetFrame(DeviceContext& ctx, const glm::mat4& viewProj, const FrameInputs* lighting);
   void SetObject(DeviceContext& ctx, uint32_t instance);

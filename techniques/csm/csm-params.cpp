@@ -1,0 +1,80 @@
+// The csm technique's parameters: declarations for ParamValues::Parse and their translation into
+// CsmSettings.
+#include <cmath>
+#include <stdexcept>
+
+#include "csm-technique.h"
+
+namespace sp::tech::csm {
+
+std::vector<ParamSpec> CsmParams() {
+  using P = ParamSpec;
+  return {
+      {P::Int, "cascades", "number of cascades (1 = one map focused on the view)", "4", 1, 8, {}},
+      {P::Choice, "split", "how the view range is split", "pssm", 0, 0, {"uniform", "log", "pssm", "manual"}},
+      {P::Float, "lambda", "pssm: weight of the logarithmic split against the uniform one", "0.75", 0, 1, {}},
+      {P::Text, "splits", "split=manual: cascades-1 increasing fractions of the view range, separated by commas or colons (e.g. 0.05,0.15,0.4)", "", 0, 0, {}},
+      {P::Choice, "fit", "cascade: each cascade fits its own slice; scene: each fits from the camera's near plane", "cascade", 0, 0, {"scene", "cascade"}},
+      {P::Choice, "select", "interval: cascade by view depth; map: first cascade whose map holds the point", "interval", 0, 0, {"interval", "map"}},
+      {P::Float, "blend", "fraction of each cascade mixed with the next towards its end", "0", 0, 0.5, {}},
+      {P::Int, "stabilize", "1: constant cascade size and whole-texel snapping (no shimmer); 0: tight fit", "1", 0, 1, {}},
+      {P::Choice, "storage", "array: one slice per cascade; atlas: one texture, cascades in a grid", "array", 0, 0, {"array", "atlas"}},
+      {P::Choice, "focus", "receivers: fit to the slice within the scene and its casters; scene: slice and whole scene depth", "receivers", 0, 0, {"scene", "receivers"}},
+      {P::Choice, "filter", "shadow filter (common/shadow-filter.hlsli)", "hw2x2", 0, 0, {"hw2x2", "box", "gauss", "gathercmp", "poisson"}},
+      {P::Choice, "kernel", "filter kernel width in texels (not hw2x2)", "3", 0, 0, {"3", "5", "7", "9"}},
+      {P::Choice, "bias", "const: DepthBias; slope: + SlopeScaledDepthBias; normal: normal offset + DepthBias; receiver-plane: depth gradient + DepthBias",
+       "slope", 0, 0, {"const", "slope", "normal", "receiver-plane"}},
+      {P::Int, "depth_bias", "D3D11 DepthBias (units of the D32 format)", "100", -1e7, 1e7, {}},
+      {P::Float, "slope_bias", "D3D11 SlopeScaledDepthBias (bias=slope)", "2.0", -100, 100, {}},
+      {P::Float, "normal_offset", "bias=normal: offset along the normal in texels of the cascade", "1.0", 0, 16, {}},
+      {P::Int, "resolution", "width and height of each cascade's region in texels", "1024", 16, 8192, {}},
+  };
+}
+
+CsmSettings SettingsFrom(const ParamValues& p) {
+  CsmSettings s;
+  FitSettings& f = s.fit;
+  f.cascades = p.getInt("cascades");
+  f.split = ParseSplitScheme(p.getChoice("split"));
+  f.lambda = p.getFloat("lambda");
+  const std::string& splits = p.getChoice("splits");
+  if (f.split == SplitScheme::Manual) {
+    try {
+      f.manualFractions = ParseManualSplits(splits, f.cascades);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(std::string("technique 'csm': ") + e.what());
+    }
+  } else if (!splits.empty()) {
+    throw std::invalid_argument("technique 'csm': splits=" + splits + " is only used with split=manual (split is " + p.getChoice("split") + ")");
+  }
+  f.fitToScene = p.getChoice("fit") == "scene";
+  f.focusReceivers = p.getChoice("focus") == "receivers";
+  f.stabilize = p.getInt("stabilize") != 0;
+  f.blend = p.getFloat("blend");
+  f.resolution = uint32_t(p.getInt("resolution"));
+
+  s.select = p.getChoice("select") == "map" ? Select::Map : Select::Interval;
+  s.storage = p.getChoice("storage") == "atlas" ? Storage::Atlas : Storage::Array;
+  const std::string filters[] = {"hw2x2", "box", "gauss", "gathercmp", "poisson"};
+  for (int i = 0; i < 5; ++i)
+    if (p.getChoice("filter") == filters[i]) s.filter = i;
+  s.kernel = p.getInt("kernel");
+  const std::string& bias = p.getChoice("bias");
+  s.bias = bias == "const" ? Bias::Const : bias == "normal" ? Bias::Normal : bias == "receiver-plane" ? Bias::ReceiverPlane : Bias::Slope;
+  s.depthBias = p.getInt("depth_bias");
+  s.slopeBias = p.getFloat("slope_bias");
+  s.normalOffset = p.getFloat("normal_offset");
+
+  // Texels between the fitted area and the region's edge: the filter's reach (the 2x2 hardware
+  // filter reads one texel beyond its centre; a k-wide kernel k/2 plus that one), and the normal
+  // offset, which moves the lookup away from the point the cascade was chosen for.
+  uint32_t reach = s.filter == 0 ? 1u : uint32_t(s.kernel / 2 + 1);
+  if (s.bias == Bias::Normal) reach += uint32_t(std::ceil(s.normalOffset));
+  f.padTexels = reach;
+  if (f.resolution < 8 * f.padTexels)
+    throw std::invalid_argument("technique 'csm': resolution=" + std::to_string(f.resolution) + " is too small for the filter's padding of " +
+                                std::to_string(f.padTexels) + " texels; use at least " + std::to_string(8 * f.padTexels));
+  return s;
+}
+
+}  // namespace sp::tech::csm

@@ -1,0 +1,185 @@
+#include "csm-technique.h"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace sp::tech::csm {
+
+namespace {
+
+// cbuffer CsmShadow in shaders-hlsl/csm/shadow.hlsli.
+struct Constants {
+  glm::mat4 lightView;
+  glm::vec4 toMapScale[8];   // xyz: light view -> (slice u, slice v, depth)
+  glm::vec4 toMapOffset[8];
+  glm::vec4 region[8];       // slice uv of the cascade's region: min.xy, size.xy
+  glm::vec4 cascade[8];      // split near, split far (view depth), world texel size, array slice
+  glm::vec4 cameraForward;   // w: cascade count
+  glm::vec4 settings;        // select, blend, bias mode, normal offset (texels)
+  glm::vec4 mapInfo;         // 1 / texture width, 1 / texture height, map-select margin (region uv), region texels
+};
+static_assert(sizeof(Constants) == 624);
+
+}  // namespace
+
+void CsmTechnique::Configure(Device& device, const ParamValues& params) {
+  settings_ = SettingsFrom(params);
+  const uint32_t n = settings_.fit.resolution;
+  const uint32_t cascades = uint32_t(settings_.fit.cascades);
+  if (settings_.storage == Storage::Atlas) {
+    columns_ = uint32_t(std::ceil(std::sqrt(double(cascades))));
+    rows_ = (cascades + columns_ - 1) / columns_;
+    arraySize_ = 1;
+  } else {
+    columns_ = rows_ = 1;
+    arraySize_ = cascades;
+  }
+  textureWidth_ = columns_ * n;
+  textureHeight_ = rows_ * n;
+  if (textureWidth_ > 16384 || textureHeight_ > 16384)
+    throw std::invalid_argument("technique 'csm': an atlas of " + std::to_string(cascades) + " cascades of resolution=" + std::to_string(n) + " is " +
+                                std::to_string(textureWidth_) + "x" + std::to_string(textureHeight_) +
+                                " texels, over the 16384 limit; lower resolution or use storage=array");
+
+  TEXTURE2D_DESC td;
+  td.Width = textureWidth_;
+  td.Height = textureHeight_;
+  td.ArraySize = arraySize_;
+  td.Format = FORMAT_R32_TYPELESS;
+  td.BindFlags = BIND_DEPTH_STENCIL | BIND_SHADER_RESOURCE;
+  map_ = device.CreateTexture2D(td);
+  map_->SetDebugName(settings_.storage == Storage::Atlas ? "csm shadow atlas" : "csm cascade array");
+  dsvs_.clear();
+  for (uint32_t s = 0; s < arraySize_; ++s) {
+    DEPTH_STENCIL_VIEW_DESC dd;
+    dd.Format = FORMAT_D32_FLOAT;
+    dd.ViewDimension = DSV_DIMENSION_TEXTURE2DARRAY;
+    dd.Texture2DArray = {0, s, 1};
+    dsvs_.push_back(device.CreateDepthStencilView(map_.get(), &dd));
+  }
+  SHADER_RESOURCE_VIEW_DESC sd;
+  sd.Format = FORMAT_R32_FLOAT;
+  sd.ViewDimension = SRV_DIMENSION_TEXTURE2DARRAY;
+  sd.Texture2DArray = {0, 1, 0, arraySize_};
+  srv_ = device.CreateShaderResourceView(map_.get(), &sd);
+
+  RASTERIZER_DESC rd;
+  rd.FrontCounterClockwise = true;  // glTF winding, as in the lit pass
+  rd.DepthBias = settings_.depthBias;
+  // The other bias modes correct the slope in the lookup instead (normal offset, receiver plane).
+  rd.SlopeScaledDepthBias = settings_.bias == Bias::Slope ? settings_.slopeBias : 0.0f;
+  // Casters between the light and a cascade's near plane are pancaked onto it and still cast.
+  rd.DepthClipEnable = false;
+  rasterizer_ = device.CreateRasterizerState(rd);
+
+  SAMPLER_DESC smp;
+  smp.Filter = FILTER_COMPARISON_MIN_MAG_LINEAR_MIP_POINT;
+  smp.AddressU = smp.AddressV = smp.AddressW = TEXTURE_ADDRESS_BORDER;
+  smp.ComparisonFunc = COMPARISON_LESS_EQUAL;
+  for (float& c : smp.BorderColor) c = 1.0f;  // outside the texture: lit
+  sampler_ = device.CreateSamplerState(smp);
+
+  BUFFER_DESC cb;
+  cb.ByteWidth = sizeof(Constants);
+  cb.BindFlags = BIND_CONSTANT_BUFFER;
+  constants_ = device.CreateBuffer(cb);
+  constants_->SetDebugName("CsmShadow constants");
+  cascadeTriangles_.assign(cascades, 0);
+}
+
+std::vector<hlsl::Define> CsmTechnique::Defines(const CsmSettings& s) {
+  // Everything else (selection, blending, bias mode, storage) is a uniform branch on constants, so
+  // the parameter space compiles to 17 shader variants instead of hundreds.
+  int kernel = s.filter == 0 ? 3 : s.kernel;
+  return {{"SHADOW_FILTER", std::to_string(s.filter)}, {"SHADOW_KERNEL", std::to_string(kernel)}};
+}
+
+CascadeRegion CsmTechnique::region(int c) const {
+  const uint32_t n = settings_.fit.resolution;
+  if (settings_.storage == Storage::Array) return {uint32_t(c), 0, 0};
+  return {0, (uint32_t(c) % columns_) * n, (uint32_t(c) / columns_) * n};
+}
+
+void CsmTechnique::WriteConstants(DeviceContext& ctx, const FrameInputs& frame) {
+  Constants k{};
+  k.lightView = fit_.lightView;
+  const float n = float(settings_.fit.resolution);
+  const float w = float(textureWidth_), h = float(textureHeight_);
+  for (size_t c = 0; c < fit_.cascades.size(); ++c) {
+    const CascadeFit& f = fit_.cascades[c];
+    CascadeRegion r = region(int(c));
+    glm::vec2 rmin(float(r.x) / w, float(r.y) / h), rsize(n / w, n / h);
+    // Light view -> region uv: u grows with x, v (row 0 at the top) against y; depth as the
+    // orthographic projection (distance -z from zNear to zFar).
+    glm::vec3 scale(1.0f / (f.max.x - f.min.x), -1.0f / (f.max.y - f.min.y), -1.0f / (f.zFar - f.zNear));
+    glm::vec3 offset(-f.min.x * scale.x, f.max.y / (f.max.y - f.min.y), -f.zNear / (f.zFar - f.zNear));
+    k.toMapScale[c] = glm::vec4(scale.x * rsize.x, scale.y * rsize.y, scale.z, 0.0f);
+    k.toMapOffset[c] = glm::vec4(offset.x * rsize.x + rmin.x, offset.y * rsize.y + rmin.y, offset.z, 0.0f);
+    k.region[c] = glm::vec4(rmin, rsize);
+    k.cascade[c] = glm::vec4(f.splitNear, f.splitFar, f.texelWorld, float(r.slice));
+  }
+  k.cameraForward = glm::vec4(frame.camera.forward(), float(fit_.cascades.size()));
+  k.settings = glm::vec4(settings_.select == Select::Map ? 1.0f : 0.0f, settings_.fit.blend, float(int(settings_.bias)), settings_.normalOffset);
+  k.mapInfo = glm::vec4(1.0f / w, 1.0f / h, float(settings_.fit.padTexels) / n, n);
+  ctx.UpdateSubresource(constants_.get(), 0, nullptr, &k, 0, 0);
+}
+
+void CsmTechnique::RenderShadows(DeviceContext& ctx, SceneDrawer& drawer, const FrameInputs& frame) {
+  GpuTimer::Scope timed(frame.timer, ctx, "shadow");
+  const scene::Scene& scene = *frame.scene;
+  float aspect = frame.height ? float(frame.width) / float(frame.height) : 1.0f;
+  fit_ = FitCascades(scene, frame.camera, aspect, frame.light.direction, settings_.fit, fit_.cascades.empty() ? nullptr : &fit_);
+  WriteConstants(ctx, frame);
+
+  // Instance bounds in the shared light view, once for all cascades.
+  std::vector<scene::Bounds> casters(scene.instances.size());
+  for (size_t i = 0; i < casters.size(); ++i) casters[i] = scene.instances[i].worldBounds.transformed(fit_.lightView);
+
+  // The maps are read by the previous frame's lit pass; unbind them before writing.
+  ShaderResourceView* none = nullptr;
+  ctx.PSSetShaderResources(0, 1, &none);
+  ctx.RSSetState(rasterizer_.get());
+  ctx.OMSetDepthStencilState(nullptr, 0);
+  if (settings_.storage == Storage::Atlas) {
+    ctx.OMSetRenderTargets(0, nullptr, dsvs_[0].get());
+    ctx.ClearDepthStencilView(dsvs_[0].get(), CLEAR_DEPTH, 1.0f, 0);
+  }
+  const float n = float(settings_.fit.resolution);
+  for (size_t c = 0; c < fit_.cascades.size(); ++c) {
+    const CascadeFit& f = fit_.cascades[c];
+    CascadeRegion r = region(int(c));
+    if (settings_.storage == Storage::Array) {
+      ctx.OMSetRenderTargets(0, nullptr, dsvs_[c].get());
+      ctx.ClearDepthStencilView(dsvs_[c].get(), CLEAR_DEPTH, 1.0f, 0);
+    }
+    VIEWPORT vp{float(r.x), float(r.y), n, n, 0, 1};
+    ctx.RSSetViewports(1, &vp);
+    // A slice with no receivers is read by no pixel under interval selection (map selection may
+    // still find points of other slices in its map).
+    bool unread = f.noReceivers && settings_.select == Select::Interval;
+    cascadeTriangles_[c] = unread ? 0 : drawer.DrawDepth(ctx, f.viewProj, [&](uint32_t i) { return MayCastInto(f, casters[i]); });
+  }
+}
+
+void CsmTechnique::BindLighting(DeviceContext& ctx) {
+  ctx.PSSetConstantBuffers(2, {constants_.get()});
+  ctx.PSSetShaderResources(0, {srv_.get()});
+  ctx.PSSetSamplers(0, {sampler_.get()});
+}
+
+ShadowStats CsmTechnique::Stats() const {
+  ShadowStats s;
+  s.memoryBytes = uint64_t(textureWidth_) * textureHeight_ * arraySize_ * 4;
+  for (uint64_t t : cascadeTriangles_) s.trianglesSubmitted += t;
+  return s;
+}
+
+std::vector<ShadowLayer> CsmTechnique::Layers() const {
+  return std::vector<ShadowLayer>(size_t(settings_.fit.cascades), ShadowLayer{settings_.fit.resolution, settings_.fit.resolution});
+}
+
+}  // namespace sp::tech::csm
+
+namespace sp::tech {
+std::unique_ptr<Technique> MakeCsmTechnique() { return std::make_unique<csm::CsmTechnique>(); }
+}  // namespace sp::tech
