@@ -1,6 +1,6 @@
 // The same HLSL arithmetic gives bit-identical results on both backends. Mesa lowers dot and
-// matrix products differently from SPIR-V and from GLSL; the toolchain rewrites them into one
-// fixed order of multiplies and adds, which this test holds it to on random inputs.
+// matrix products and lerp differently from SPIR-V and from GLSL; the toolchain rewrites them into
+// one fixed order of multiplies and adds, which this test holds it to on random inputs.
 #include <gtest/gtest.h>
 
 #include <random>
@@ -14,8 +14,11 @@ const char* kShader = R"(
 cbuffer Matrices : register(b0) { float4x4 M; row_major float4x4 R; float3x3 N; };
 StructuredBuffer<float4> input : register(t0);
 RWStructuredBuffer<float4> output : register(u0);
+RWStructuredBuffer<float4> lerps : register(u1);
 [numthreads(64, 1, 1)] void main(uint3 id : SV_DispatchThreadID) {
   float4 v = input[id.x], w = input[id.x + 1];
+  // A constant endpoint is where Mesa's two paths differed (mix with a literal).
+  lerps[id.x] = float4(lerp(v.x, 0.4075, frac(w.x)), lerp(v.yz, w.yz, frac(w.zw)), lerp(v.w, w.w, 0.3));
   float4 r = mul(M, v) + mul(v, R);
   r.xyz += mul(N, w.xyz) + normalize(w.xyz) * length(v.xyz) + distance(v.xy, w.xy);
   r.w += dot(v, w) + dot(v.xyz, w.zyx);
@@ -33,17 +36,21 @@ std::vector<float> RunOn(Backend backend, const std::vector<float>& in, const st
   Ref<Buffer> src = MakeBuffer(*dev, BIND_SHADER_RESOURCE, in.data(), uint32_t(in.size() * 4), RESOURCE_MISC_BUFFER_STRUCTURED, 16);
   Ref<Buffer> dst = MakeBuffer(*dev, BIND_UNORDERED_ACCESS, nullptr, uint32_t((in.size() - 4) * 4), RESOURCE_MISC_BUFFER_STRUCTURED, 16);
   Ref<ShaderResourceView> srv = dev->CreateShaderResourceView(src.get());
-  Ref<UnorderedAccessView> uav = dev->CreateUnorderedAccessView(dst.get());
+  Ref<Buffer> lerps = MakeBuffer(*dev, BIND_UNORDERED_ACCESS, nullptr, uint32_t((in.size() - 4) * 4), RESOURCE_MISC_BUFFER_STRUCTURED, 16);
+  Ref<UnorderedAccessView> uav = dev->CreateUnorderedAccessView(dst.get()), lerpUav = dev->CreateUnorderedAccessView(lerps.get());
   ctx.CSSetShader(cs.get());
   ctx.CSSetConstantBuffers(0, {cb.get()});
   ctx.CSSetShaderResources(0, {srv.get()});
-  ctx.CSSetUnorderedAccessViews(0, {uav.get()});
+  ctx.CSSetUnorderedAccessViews(0, {uav.get(), lerpUav.get()});
   ctx.Dispatch(uint32_t((in.size() / 4 - 1) / 64), 1, 1);
   EXPECT_EQ(dev->ValidationErrorCount(), 0u) << dev->LastValidationError();
-  return ReadAs<float>(ReadBuffer(*dev, ctx, dst.get()));
+  std::vector<float> out = ReadAs<float>(ReadBuffer(*dev, ctx, dst.get()));
+  std::vector<float> l = ReadAs<float>(ReadBuffer(*dev, ctx, lerps.get()));
+  out.insert(out.end(), l.begin(), l.end());
+  return out;
 }
 
-TEST(CrossBackendArithmetic, DotAndMatrixProductsAreBitIdentical) {
+TEST(CrossBackendArithmetic, DotMatrixProductsAndLerpAreBitIdentical) {
   std::mt19937 rng(1234);
   std::uniform_real_distribution<float> u(-10.0f, 10.0f);
   std::vector<float> in(4 * (64 * 16 + 1)), matrices(16 + 16 + 12);

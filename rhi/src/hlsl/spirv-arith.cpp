@@ -1,7 +1,7 @@
-// Deterministic arithmetic for dot products and matrix products.
+// Deterministic arithmetic for dot products, matrix products and lerp.
 //
-// Mesa lowers OpDot / matrix products from SPIR-V (lavapipe) and dot() / matrix products from GLSL
-// (llvmpipe) to different sequences of multiplies, adds and fused multiply-adds, so the same
+// Mesa lowers OpDot / matrix products / FMix from SPIR-V (lavapipe) and dot() / matrix products /
+// mix() from GLSL (llvmpipe) to different sequences of multiplies, adds and fused multiply-adds, so the same
 // HLSL gave results differing in the last bits on the two backends: enough to flip shadow
 // comparisons where receiver and occluder depths meet. Explicit scalar multiplies and adds come
 // out bit-identical on both, so these instructions are rewritten into them here, in one fixed
@@ -100,6 +100,11 @@ class Lowering {
     return sum;
   }
 
+  bool IsFloat(uint32_t type) const {
+    auto it = types_.find(type);
+    return it != types_.end() && (it->second.op == spv::OpTypeFloat || IsFloatVector(type));
+  }
+
   bool IsFloatVector(uint32_t type) const {
     auto it = types_.find(type);
     return it != types_.end() && it->second.op == spv::OpTypeVector && types_.count(it->second.component) &&
@@ -152,6 +157,13 @@ class Lowering {
         if (w[3] != glsl_ || wc < 6) return false;
         uint32_t inst = w[4], x = w[5];
         uint32_t xt = typeOf_.at(x);
+        if (inst == GLSLstd450FMix && wc >= 8 && IsFloat(xt)) {
+          // HLSL's lerp(x, y, s) = x + s * (y - x), the order fxc's mad uses.
+          uint32_t d = Emit(out, spv::OpFSub, w[1], {w[6], x});
+          uint32_t p = Emit(out, spv::OpFMul, w[1], {w[7], d});
+          Emit(out, spv::OpFAdd, w[1], {x, p}, w[2]);
+          return true;
+        }
         if (!IsFloatVector(xt)) return false;  // scalars: abs/sqrt are exact enough and lowered alike
         uint32_t scalar = types_.at(xt).component, n = types_.at(xt).count;
         if (inst == GLSLstd450Length) {

@@ -44,7 +44,7 @@ void DropBiasFromGathers(std::vector<uint32_t>& spirv);
 // word type, and make the int overloads of InterlockedMin/Max compare signed as in D3D11.
 void FixAtomicOperandTypes(std::vector<uint32_t>& spirv);
 
-// Rewrites OpDot, matrix products, length, normalize and distance into explicit scalar and
+// Rewrites OpDot, matrix products, length, normalize, distance and lerp (FMix) into explicit scalar and
 // component-wise multiplies and adds in a fixed order, so that the Vulkan and GL drivers compute
 // bit-identical results (see spirv-arith.cpp).
 void LowerDotAndMatrixProducts(std::vector<uint32_t>& spirv);
