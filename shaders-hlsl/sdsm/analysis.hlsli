@@ -1,0 +1,87 @@
+// Sample Distribution Shadow Maps (Lauritzen, Salvi, Lefohn 2011): what the analysis passes share.
+// The C++ mirror of every constant and layout here is techniques/sdsm/analysis-frame.h and
+// depth-analysis.h; the CPU reference in techniques/sdsm/ repeats the per-pixel arithmetic with
+// the same float operations in the same order, which is why the critical expressions are
+// `precise` (no contraction into fused multiply-adds, which the CPU does not do either).
+#ifndef SP_SDSM_ANALYSIS_HLSLI
+#define SP_SDSM_ANALYSIS_HLSLI
+
+#ifndef SDSM_BINS
+#define SDSM_BINS 1024
+#endif
+#define SDSM_MAX_PARTITIONS 8
+#define SDSM_TILE 16
+#define SDSM_GROUP_THREADS (SDSM_TILE * SDSM_TILE)
+
+// The results buffer (RWByteAddressBuffer, 32-bit words).
+#define SDSM_W_MIN 0          // min view depth of non-sky pixels (float bits; +inf when none)
+#define SDSM_W_MAX 1          // max view depth (float bits; 0 when none)
+#define SDSM_W_SAMPLES 2      // non-sky pixels counted by the histogram pass
+#define SDSM_W_PARTITIONS 3   // partition count K of the last partition pass
+#define SDSM_W_SPLITS 4       // K + 1 split distances (floats), first = min, last = max
+#define SDSM_W_BOUNDS 20      // per partition 8 words: ordered keys of light-space min xyz,
+                              // sample count, ordered keys of max xyz, 0
+#define SDSM_RESULT_WORDS 96
+
+#define SDSM_INFINITY asfloat(0x7f800000u)
+
+// SDSM_LAYOUT_ONLY: just the constants above and the key mapping (for shaders with their own b0).
+#ifndef SDSM_LAYOUT_ONLY
+// Per-frame constants of every analysis pass (C++: AnalysisConstants).
+cbuffer SdsmAnalysis : register(b0) {
+  uint2 depthSize;         // camera depth buffer, pixels
+  uint2 tileCount;         // ceil(depthSize / SDSM_TILE)
+  float depthA;            // view depth = depthA / (depthB - d), from the camera projection
+  float depthB;
+  float fallbackNear;      // the camera's near/far: the range when no pixel is covered
+  float fallbackFar;
+  float2 ndcScale;         // ndc = (pixel + 0.5) * ndcScale + ndcOffset
+  float2 ndcOffset;
+  float2 rayScale;         // view-space ray per unit view depth: (ndc * rayScale + rayOffset, -1)
+  float2 rayOffset;
+  float3 lightRayX;        // light-view images of the camera's view axes x, y and -z,
+  uint partitionCount;
+  float3 lightRayY;
+  uint partitionScheme;    // 0 log, 1 adaptive-log, 2 k-means
+  float3 lightRayZ;
+  uint gapThreshold;       // adaptive-log: bins with at most this many samples count as empty
+  float3 lightOrigin;      // and of the camera position
+  uint kmeansIterations;
+};
+
+float SdsmViewDepth(float d) {
+  precise float z = depthA / (depthB - d);
+  return z;
+}
+
+// Light-view position of the pixel's sample at view depth z: the camera ray through the pixel
+// centre, scaled by z, in light space. Only multiplies and adds, so the CPU reproduces it exactly.
+float3 SdsmLightPosition(uint2 pixel, float z) {
+  precise float2 ndc = (float2(pixel) + 0.5) * ndcScale + ndcOffset;
+  precise float2 ray = ndc * rayScale + rayOffset;
+  precise float3 l = lightRayX * ray.x + lightRayY * ray.y + lightRayZ;
+  precise float3 p = lightOrigin + l * z;
+  return p;
+}
+
+// Histogram bin of view depth z over [log zMin, log zMax] (clamped to the end bins).
+uint SdsmHistogramBin(float z, float zMin, float zMax) {
+  float lmin = log(zMin);
+  float range = log(zMax) - lmin;
+  float scale = range > 0 ? float(SDSM_BINS) / range : 0.0;
+  float t = (log(z) - lmin) * scale;
+  return min(uint(max(t, 0.0)), uint(SDSM_BINS - 1));
+}
+#endif  // SDSM_LAYOUT_ONLY
+
+// A float's bits mapped to a uint whose unsigned order is the float order, negatives included
+// (so InterlockedMin/Max on the key is a float min/max).
+uint SdsmOrderedKey(float f) {
+  uint u = asuint(f);
+  return (u & 0x80000000u) != 0 ? ~u : (u | 0x80000000u);
+}
+float SdsmFromOrderedKey(uint k) {
+  return asfloat((k & 0x80000000u) != 0 ? (k & 0x7fffffffu) : ~k);
+}
+
+#endif
