@@ -263,7 +263,7 @@ void GLContext::BindUniformBlock(const Shader& shader, size_t index, const Buffe
   const GlBinding& b = shader.Bytecode().glBindings[index];
   const CBufferInfo* info = shader.Reflection().FindCBuffer(b.registerIndex);
   const uint32_t declared = info ? info->size : 0;
-  const GLBuffer& gb = GL(buffer);
+  GLBuffer& gb = GL(buffer);  // not const: the repack may refresh its CPU copy
   if (b.repack.empty() && gb.size >= declared) {
     BindRange(GL_UNIFORM_BUFFER, b.glBinding, {gb.name, 0, GLsizeiptr(gb.size)});
     return;
@@ -278,6 +278,7 @@ void GLContext::BindUniformBlock(const Shader& shader, size_t index, const Buffe
   const uint32_t blockSize = b.repack.empty() ? declared : std::max(b.glBlockSize, 16u);
   static thread_local std::vector<uint8_t> block;
   block.assign(blockSize, 0);
+  RefreshShadow(gb);
   auto copy = [&](uint32_t src, uint32_t dst, uint32_t n) {
     if (src >= gb.shadow.size() || dst >= blockSize) return;
     n = std::min({n, uint32_t(gb.shadow.size() - src), blockSize - dst});

@@ -73,11 +73,17 @@ struct GLBuffer : detail::BackendObject {
   bool constant = false;
   // Constant buffers keep the D3D-packed contents on the CPU for the std140 repack path.
   std::vector<uint8_t> shadow;
+  // GPU-side writes (copies into the buffer) make `shadow` stale; it is read back only when a
+  // repack or a partial update needs it, so a GPU copy into a constant buffer does not wait.
+  bool shadowStale = false;
   uint64_t version = 1;  // bumped on every write to a constant buffer
   GLStagingMemory staging;  // USAGE_STAGING: `name` is staging.buffer
   bool mappedGL = false;    // USAGE_DYNAMIC non-constant buffer mapped through GL
   ~GLBuffer() override;
 };
+
+// Brings a constant buffer's CPU copy up to date after GPU writes (CopyResource and friends).
+void RefreshShadow(GLBuffer& b);
 
 struct SubresourceLayout {
   uint64_t offset = 0;

@@ -22,6 +22,7 @@ bool GLContext::Map(Resource* r, uint32_t sub, MAP type, uint32_t flags, MAPPED_
       return true;
     }
     if (b.constant) {
+      if (type != MAP_WRITE_DISCARD) RefreshShadow(b);
       out->pData = b.shadow.data();
       return true;
     }
@@ -70,6 +71,7 @@ void GLContext::Unmap(Resource* r, uint32_t sub) {
       // write, which waits for draws still reading the buffer), then the new contents.
       glNamedBufferData(b.name, b.size, nullptr, GL_DYNAMIC_DRAW);
       glNamedBufferSubData(b.name, 0, b.size, b.shadow.data());
+      b.shadowStale = false;
       ++b.version;
     } else if (b.mappedGL) {
       glUnmapNamedBuffer(b.name);

@@ -30,11 +30,11 @@ void CopyBufferRegion(GLBuffer& dst, uint32_t dstOffset, GLBuffer& src, uint32_t
   if (src.usage == USAGE_STAGING) src.staging.MarkGpuUse();
   if (dst.usage == USAGE_STAGING) dst.staging.MarkGpuUse();
   if (dst.constant) {
-    // The CPU copy feeds std140 repacking; keep it equal to what the GPU now holds.
-    glGetNamedBufferSubData(dst.name, dstOffset, size, dst.shadow.data() + dstOffset);
+    dst.shadowStale = true;
     ++dst.version;
   }
 }
+
 
 // A texture of a depth family stored as depth and its twin stored as colour (created without
 // BIND_DEPTH_STENCIL) are copied bit for bit in D3D; glCopyImageSubData refuses depth-colour
@@ -132,6 +132,13 @@ void CopyTextureRegion(Texture* dst, uint32_t dstSub, uint32_t x, uint32_t y, ui
 
 }  // namespace
 
+void RefreshShadow(GLBuffer& b) {
+  if (!b.shadowStale) return;
+  // Waits for the copies that made it stale; only the repack path and partial updates get here.
+  glGetNamedBufferSubData(b.name, 0, b.size, b.shadow.data());
+  b.shadowStale = false;
+}
+
 void GLContext::CopyResource(Resource* dst, Resource* src) {
   dev_.MakeCurrent();
   if (IsBuffer(dst)) {
@@ -163,9 +170,11 @@ void GLContext::UpdateSubresource(Resource* dst, uint32_t sub, const BOX& b, con
   if (IsBuffer(dst)) {
     GLBuffer& buf = GL(static_cast<Buffer*>(dst));
     const uint32_t size = b.right - b.left;
+    if (buf.constant && size != buf.size) RefreshShadow(buf);  // the rest of the CPU copy must be current
     glNamedBufferSubData(buf.name, b.left, size, data);
     if (buf.constant) {
       std::memcpy(buf.shadow.data() + b.left, data, size);
+      if (size == buf.size) buf.shadowStale = false;
       ++buf.version;
     }
     return;
@@ -224,7 +233,7 @@ void GLContext::CopyStructureCount(Buffer* dst, uint32_t dstOffset, UnorderedAcc
   glCopyNamedBufferSubData(GL(src).counter, d.name, 0, dstOffset, 4);
   if (d.usage == USAGE_STAGING) d.staging.MarkGpuUse();
   if (d.constant) {
-    glGetNamedBufferSubData(d.name, dstOffset, 4, d.shadow.data() + dstOffset);
+    d.shadowStale = true;
     ++d.version;
   }
 }
