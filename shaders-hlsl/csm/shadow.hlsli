@@ -4,27 +4,43 @@
 // Texture2DArray: one slice each (storage=array) or regions of slice 0 (storage=atlas); csmRegion
 // says where, so both storages take the same path.
 //
-// Defines: SHADOW_FILTER and SHADOW_KERNEL, for common/shadow-filter.hlsli. Selection, blending
-// and the bias mode are uniform branches on constants.
+// Defines: CSM_MOMENTS 1 selects moment filtering (techniques/moments; the MOMENT_* defines of
+// moments/moments.hlsli come with it), else SHADOW_FILTER and SHADOW_KERNEL select the comparison
+// filter of common/shadow-filter.hlsli. Selection, blending and the bias mode are uniform
+// branches on constants.
 #include "common/frame.hlsli"
 #include "common/shadow-lookup.hlsli"
+// Also for the moment filters: NormalOffset.
 #include "common/shadow-filter.hlsli"
+
+#ifndef CSM_MOMENTS
+#define CSM_MOMENTS 0
+#endif
+#if CSM_MOMENTS
+#include "moments/moments.hlsli"
+#endif
 
 #define CSM_MAX_CASCADES 8
 
 cbuffer CsmShadow : register(b2) {
   float4x4 csmLightView;                      // world -> the light view all cascades share
-  float4 csmToMapScale[CSM_MAX_CASCADES];     // light view -> (slice u, slice v, depth), per cascade
+  float4 csmToMapScale[CSM_MAX_CASCADES];     // xyz: light view -> (slice u, slice v, depth), per cascade; w: map-select margin in region uv
   float4 csmToMapOffset[CSM_MAX_CASCADES];
   float4 csmRegion[CSM_MAX_CASCADES];         // the cascade's region in slice uv: min.xy, size.zw
   float4 csmCascade[CSM_MAX_CASCADES];        // split near, split far (view depth), world texel size, array slice
   float4 csmCameraForward;                    // w: cascade count
   float4 csmSettings;                         // select (0 interval, 1 map), blend, bias (0 const, 1 slope, 2 normal, 3 receiver plane), normal offset (texels)
-  float4 csmMapInfo;                          // 1 / texture size (xy), map-select margin in region uv, region size in texels
+  float4 csmMapInfo;                          // 1 / texture size (xy), unused, region size in texels
 };
 
+#if CSM_MOMENTS
+// The moments of every cascade, mipmapped, with the map's trilinear/anisotropic sampler.
+Texture2DArray<float4> CsmMoments : register(t0);
+SamplerState CsmMomentSampler : register(s0);
+#else
 Texture2DArray<float> CsmMap : register(t0);
 SamplerComparisonState CsmSampler : register(s0);
+#endif
 
 static const int kCsmBiasNormal = 2;
 static const int kCsmBiasReceiverPlane = 3;
@@ -40,6 +56,10 @@ float3 CsmMapCoord(float3 lv, int c) { return lv * csmToMapScale[c].xyz + csmToM
 
 // Position within the cascade's own region, [0, 1] across it.
 float2 CsmLocalUv(float2 sliceUv, int c) { return (sliceUv - csmRegion[c].xy) / csmRegion[c].zw; }
+
+// Map selection's margin for cascade c (region uv): its padding, which holds the filter's reach
+// and, with moments, the blur's, a different number of texels per cascade.
+float CsmMargin(int c) { return csmToMapScale[c].w; }
 
 // Inside cascade c's map, `margin` (region uv) away from its border so the whole filter kernel
 // reads this cascade, and within its depth range.
@@ -61,7 +81,7 @@ int CsmSelect(float3 worldPos, float3 lv) {
     return -1;
   }
   for (int m = 0; m < count; ++m)
-    if (CsmInsideMap(lv, m, csmMapInfo.z)) return m;
+    if (CsmInsideMap(lv, m, CsmMargin(m))) return m;
   return -1;
 }
 
@@ -76,12 +96,12 @@ float CsmBlendWeight(int c, float3 worldPos, float3 lv) {
     float4 k = csmCascade[c];
     toEnd = (k.y - CsmViewDepth(worldPos)) / (k.y - k.x);
   } else {
-    float margin = csmMapInfo.z;
+    float margin = CsmMargin(c);
     float2 l = CsmLocalUv(CsmMapCoord(lv, c).xy, c);
     float2 edge = min(l - margin, 1.0 - margin - l);
     toEnd = min(edge.x, edge.y) / (0.5 - margin);
   }
-  if (toEnd >= blend || !CsmInsideMap(lv, c + 1, csmMapInfo.z)) return 1.0;
+  if (toEnd >= blend || !CsmInsideMap(lv, c + 1, CsmMargin(c + 1))) return 1.0;
   return saturate(toEnd / blend);
 }
 
@@ -93,9 +113,41 @@ float3 CsmLookupPosition(int c, float3 lv, float3 worldNormal) {
   return lv + mul((float3x3)csmLightView, offset);
 }
 
+#if CSM_MOMENTS
+// Moments are filtered like colour: one SampleGrad, trilinear or anisotropic. The gradients are
+// the shared light-view derivatives scaled into this cascade, not the lookup's own: those jump
+// where neighbouring pixels read different cascades (or blend two), and would pick the coarsest
+// mip along every cascade border.
+float CsmMomentVisibility(int c, float3 m, float3 lvDdx, float3 lvDdy) {
+  float2 s = csmToMapScale[c].xy;
+  // Onto the region's outermost texel centres, so a bilinear tap never reads a neighbouring
+  // region. (Moment filters are limited to storage=array, where the region is the slice and the
+  // clamp sampler does the same; lower mips would mix atlas regions anyway.)
+  float2 halfTexel = 0.5 * csmMapInfo.xy;
+  float2 lo = csmRegion[c].xy, hi = csmRegion[c].xy + csmRegion[c].zw;
+  float2 uv = clamp(m.xy, lo + halfTexel, hi - halfTexel);
+  float2 gx = lvDdx.xy * s, gy = lvDdy.xy * s;
+  // Keep the footprint inside the region: trilinear filtering at a footprint of f texels reads up
+  // to 2f texels from the centre (the coarser mip's bilinear pair). The padding holds the blur but
+  // not a footprint of many texels, and past the region's edge the clamp repeats edge texels
+  // whose depth does not continue the receiver's slope: the mean moves off the receiver and it
+  // shadows itself. A smaller footprint there costs some aliasing at the region's rim only.
+  float2 texels = 1.0 / csmMapInfo.xy;
+  float2 room2 = min(uv - lo, hi - uv) * texels;
+  float room = max(min(room2.x, room2.y), 0.5);
+  float footprint = sqrt(max(dot(gx * texels, gx * texels), dot(gy * texels, gy * texels)));
+  float shrink = min(1.0, room / max(2.0 * footprint, 1e-6));
+  float4 moments = CsmMoments.SampleGrad(CsmMomentSampler, float3(uv, csmCascade[c].w), gx * shrink, gy * shrink);
+  return MomentVisibility(moments, m.z);
+}
+#endif
+
 float CsmFiltered(int c, float3 lv, float3 lvDdx, float3 lvDdy, float3 worldNormal, float2 pixel) {
   float3 m = CsmMapCoord(CsmLookupPosition(c, lv, worldNormal), c);
   if (m.z > 1.0) return 1.0;  // beyond the cascade's far plane: nothing there casts
+#if CSM_MOMENTS
+  return CsmMomentVisibility(c, m, lvDdx, lvDdy);
+#else
   ShadowFilterInput fi;
   fi.uv = m.xy;
   fi.layer = csmCascade[c].w;
@@ -113,6 +165,7 @@ float CsmFiltered(int c, float3 lv, float3 lvDdx, float3 lvDdy, float3 worldNorm
   }
   fi.pixel = pixel;
   return ShadowFilter(CsmMap, CsmSampler, fi);
+#endif
 }
 
 float ShadowVisibility(float3 worldPos, float3 worldNormal, float4 svPosition) {

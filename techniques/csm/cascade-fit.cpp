@@ -42,6 +42,14 @@ void SliceSphere(const scene::Camera& camera, float aspect, float d0, float d1, 
   *center = camera.position + camera.forward() * z;
 }
 
+// Padding of a cascade whose texels, before its share of padWorld is added, are `texel` wide.
+// More padding only widens the texels, so padWorld covers fewer of the final texels than of these:
+// rounding up here is enough for the cascade as fitted.
+uint32_t CascadePad(const FitSettings& s, float texel) {
+  if (!(s.padWorld > 0.0f) || !(texel > 0.0f)) return s.padTexels;
+  return s.padTexels + uint32_t(std::min(std::ceil(s.padWorld / texel), float(s.padWorldMaxTexels)));
+}
+
 std::string Trim(const std::string& s) {
   size_t a = s.find_first_not_of(" \t"), b = s.find_last_not_of(" \t");
   return a == std::string::npos ? std::string() : s.substr(a, b - a + 1);
@@ -297,6 +305,27 @@ float CasterNear(const scene::Scene& scene, const std::vector<scene::Bounds>& ca
   return zNear;
 }
 
+// farToRegion: the farthest distance of anything inside the region's prism (its whole x/y, the
+// padding included), from the part of each instance's bounds inside it, as CasterNear does for
+// the near side; at least `zFar`.
+float RegionFar(const scene::Scene& scene, const std::vector<scene::Bounds>& casters, const glm::mat4& lightView, const scene::Bounds& sceneLs,
+                const CascadeFit& c, float zFar) {
+  CascadeFit prismFit = c;
+  prismFit.zFar = 1e30f;
+  glm::mat4 toWorld = glm::inverse(lightView);
+  glm::vec3 prism[8];
+  for (int k = 0; k < 8; ++k) {
+    glm::vec3 l(k & 1 ? c.max.x : c.min.x, k & 2 ? c.max.y : c.min.y, k & 4 ? sceneLs.min.z - 1.0f : sceneLs.max.z + 1.0f);
+    prism[k] = glm::vec3(toWorld * glm::vec4(l, 1.0f));
+  }
+  for (size_t k = 0; k < casters.size(); ++k) {
+    if (!MayCastInto(prismFit, casters[k]) || -casters[k].min.z <= zFar) continue;
+    for (const glm::vec3& p : SliceBoxIntersection(prism, scene.instances[k].worldBounds))
+      zFar = std::max(zFar, -glm::vec3(lightView * glm::vec4(p, 1.0f)).z);
+  }
+  return zFar;
+}
+
 }  // namespace
 
 CascadeSet FitCascades(const scene::Scene& scene, const scene::Camera& camera, float aspect, const glm::vec3& lightDirection,
@@ -314,7 +343,6 @@ CascadeSet FitCascades(const scene::Scene& scene, const scene::Camera& camera, f
     for (const scene::Instance& inst : scene.instances) casters.push_back(inst.worldBounds.transformed(set.lightView));
   }
   const float n = float(s.resolution);
-  const float pad = float(s.padTexels);
 
   for (int i = 0; i < s.cascades; ++i) {
     CascadeFit c;
@@ -333,6 +361,8 @@ CascadeSet FitCascades(const scene::Scene& scene, const scene::Camera& camera, f
     c.noReceivers = r.none;
 
     glm::vec2 texel;
+    const float basePad = float(s.padTexels);
+    float pad;
     if (s.stabilize) {
       const CascadeFit* last = previous && i < int(previous->cascades.size()) ? &previous->cascades[i] : nullptr;
       float size;
@@ -340,11 +370,16 @@ CascadeSet FitCascades(const scene::Scene& scene, const scene::Camera& camera, f
       StableSquare(camera, aspect, set.lightView, r, s.focusReceivers, c, last, &size, &mid);
       c.fitSize = size;
       // One texel more than the padding needs: snapping moves the square by up to one.
+      c.padTexels = CascadePad(s, size / std::max(n - 2.0f * basePad - 1.0f, 1.0f));
+      pad = float(c.padTexels);
       float t = size / std::max(n - 2.0f * pad - 1.0f, 1.0f);
       texel = glm::vec2(t);
       c.min = (glm::floor((mid - size * 0.5f) / t) - pad) * t;
     } else {
       glm::vec2 extent = glm::max(r.max - r.min, glm::vec2(1e-4f));
+      glm::vec2 t0 = extent / std::max(n - 2.0f * basePad, 1.0f);
+      c.padTexels = CascadePad(s, std::max(t0.x, t0.y));
+      pad = float(c.padTexels);
       texel = extent / std::max(n - 2.0f * pad, 1.0f);
       c.min = r.min - pad * texel;
     }
@@ -354,6 +389,7 @@ CascadeSet FitCascades(const scene::Scene& scene, const scene::Camera& camera, f
     if (s.focusReceivers && !r.none) {
       c.zFar = r.zFar;
       c.zNear = CasterNear(scene, casters, set.lightView, sceneLs, r, c, (pad + 1.0f) * texel);
+      if (s.farToRegion) c.zFar = RegionFar(scene, casters, set.lightView, sceneLs, c, c.zFar);
     } else {
       c.zNear = -sceneLs.max.z;
       c.zFar = -sceneLs.min.z;

@@ -49,6 +49,16 @@ struct FitSettings {
   float blend = 0.0f;          // each cascade also covers this fraction of the previous one's interval
   uint32_t resolution = 1024;  // texels across a cascade's region
   uint32_t padTexels = 2;      // texels kept between the fitted area and the region's edge
+  // A reach given in world units (the moment blur radius), added to padTexels in each cascade's
+  // own texels, rounded up and at most padWorldMaxTexels: the blur covers the same world distance
+  // in every cascade, so its share of the padding differs per cascade (CascadeFit::padTexels).
+  float padWorld = 0.0f;
+  uint32_t padWorldMaxTexels = 0;
+  // focus=receivers: the far plane also behind every surface in the region (x/y with padding),
+  // not only behind the slice's receivers. Beyond it depth is clamped to 1 (depth clip is off),
+  // which comparisons do not mind but moment filters do: a receiver near the far plane would
+  // average its neighbours' clamped depths, no longer its own plane, and shadow itself.
+  bool farToRegion = false;
 };
 
 struct CascadeFit {
@@ -61,6 +71,7 @@ struct CascadeFit {
   float texelWorld = 0;               // world size of one texel (the larger of x and y)
   float fitSize = 0;                  // stabilized: side of the fitted square before padding
   bool noReceivers = false;           // the slice misses the scene's bounds (fitted to the slice alone)
+  uint32_t padTexels = 0;             // this region's padding: FitSettings::padTexels + its share of padWorld
 
   // World point -> texel coordinates of the region (row 0 at the top) and depth in [0, 1].
   glm::vec3 texel(const glm::vec3& world, uint32_t resolution) const;

@@ -1,5 +1,6 @@
 // The csm technique's parameters: declarations for ParamValues::Parse and their translation into
 // CsmSettings.
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -9,7 +10,9 @@ namespace sp::tech::csm {
 
 std::vector<ParamSpec> CsmParams() {
   using P = ParamSpec;
-  return {
+  std::vector<std::string> filters = {"hw2x2", "box", "gauss", "gathercmp", "poisson"};
+  for (const std::string& m : MomentFilterNames()) filters.push_back(m);
+  std::vector<ParamSpec> specs = {
       {P::Int, "cascades", "number of cascades (1 = one map focused on the view)", "4", 1, 8, {}},
       {P::Choice, "split", "how the view range is split", "pssm", 0, 0, {"uniform", "log", "pssm", "manual"}},
       {P::Float, "lambda", "pssm: weight of the logarithmic split against the uniform one", "0.75", 0, 1, {}},
@@ -20,15 +23,26 @@ std::vector<ParamSpec> CsmParams() {
       {P::Int, "stabilize", "1: constant cascade size and whole-texel snapping (no shimmer); 0: tight fit", "1", 0, 1, {}},
       {P::Choice, "storage", "array: one slice per cascade; atlas: one texture, cascades in a grid", "array", 0, 0, {"array", "atlas"}},
       {P::Choice, "focus", "receivers: fit to the slice within the scene and its casters; scene: slice and whole scene depth", "receivers", 0, 0, {"scene", "receivers"}},
-      {P::Choice, "filter", "shadow filter (common/shadow-filter.hlsli)", "hw2x2", 0, 0, {"hw2x2", "box", "gauss", "gathercmp", "poisson"}},
-      {P::Choice, "kernel", "filter kernel width in texels (not hw2x2)", "3", 0, 0, {"3", "5", "7", "9"}},
-      {P::Choice, "bias", "const: DepthBias; slope: + SlopeScaledDepthBias; normal: normal offset + DepthBias; receiver-plane: depth gradient + DepthBias",
+      {P::Choice, "filter", "shadow filter: PCF (common/shadow-filter.hlsli) or moments (moments/moments.hlsli; storage=array only)", "hw2x2", 0,
+       0, filters},
+      {P::Choice, "kernel", "filter kernel width in texels (box, gauss, gathercmp, poisson)", "3", 0, 0, {"3", "5", "7", "9"}},
+      {P::Choice, "bias",
+       "const: DepthBias; slope: + SlopeScaledDepthBias; normal: normal offset + DepthBias; receiver-plane: depth gradient + DepthBias "
+       "(moment filters: no depth bias; bias=normal applies its normal offset)",
        "slope", 0, 0, {"const", "slope", "normal", "receiver-plane"}},
       {P::Int, "depth_bias", "D3D11 DepthBias (units of the D32 format)", "100", -1e7, 1e7, {}},
       {P::Float, "slope_bias", "D3D11 SlopeScaledDepthBias (bias=slope)", "2.0", -100, 100, {}},
       {P::Float, "normal_offset", "bias=normal: offset along the normal in texels of the cascade", "1.0", 0, 16, {}},
       {P::Int, "resolution", "width and height of each cascade's region in texels", "1024", 16, 8192, {}},
   };
+  // msaa, blur, bleed, exponents, precision: used by the moment filters only.
+  for (ParamSpec m : MomentParamSpecs()) {
+    m.help += " (moment filters only)";
+    specs.push_back(m);
+  }
+  specs.push_back({P::Choice, "anisotropy", "maximum anisotropy of the moment lookups, 1 = trilinear (moment filters only)", "1", 0, 0,
+                   {"1", "2", "4", "8", "16"}});
+  return specs;
 }
 
 CsmSettings SettingsFrom(const ParamValues& p) {
@@ -55,10 +69,27 @@ CsmSettings SettingsFrom(const ParamValues& p) {
 
   s.select = p.getChoice("select") == "map" ? Select::Map : Select::Interval;
   s.storage = p.getChoice("storage") == "atlas" ? Storage::Atlas : Storage::Array;
+  const std::string& filter = p.getChoice("filter");
   const std::string filters[] = {"hw2x2", "box", "gauss", "gathercmp", "poisson"};
   for (int i = 0; i < 5; ++i)
-    if (p.getChoice("filter") == filters[i]) s.filter = i;
+    if (filter == filters[i]) s.filter = i;
   s.kernel = p.getInt("kernel");
+  s.moments = IsMomentFilter(filter);
+  s.anisotropy = std::stoi(p.getChoice("anisotropy"));
+  {
+    // Parsed whatever the filter, so a bad value is an error even where it would be ignored (a
+    // comparison filter's values are checked as evsm4's, the kind that accepts every form).
+    std::map<std::string, std::string> values = p.all();
+    if (!s.moments) values["filter"] = "evsm4";
+    try {
+      s.moment = ParseMomentOptions(values);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(std::string("technique 'csm': ") + e.what());
+    }
+  }
+  if (s.moments && s.storage == Storage::Atlas)
+    throw std::invalid_argument("technique 'csm': filter=" + filter +
+                                " needs storage=array: the moment blur and mip chain of an atlas would mix neighbouring cascades' regions");
   const std::string& bias = p.getChoice("bias");
   s.bias = bias == "const" ? Bias::Const : bias == "normal" ? Bias::Normal : bias == "receiver-plane" ? Bias::ReceiverPlane : Bias::Slope;
   s.depthBias = p.getInt("depth_bias");
@@ -66,14 +97,23 @@ CsmSettings SettingsFrom(const ParamValues& p) {
   s.normalOffset = p.getFloat("normal_offset");
 
   // Texels between the fitted area and the region's edge: the filter's reach (the 2x2 hardware
-  // filter reads one texel beyond its centre; a k-wide kernel k/2 plus that one), and the normal
-  // offset, which moves the lookup away from the point the cascade was chosen for.
-  uint32_t reach = s.filter == 0 ? 1u : uint32_t(s.kernel / 2 + 1);
+  // filter, and the bilinear moment lookup at mip 0, read one texel beyond their centre; a k-wide
+  // kernel k/2 plus that one), and the normal offset, which moves the lookup away from the point
+  // the cascade was chosen for.
+  uint32_t reach = s.filter == 0 || s.moments ? 1u : uint32_t(s.kernel / 2 + 1);
   if (s.bias == Bias::Normal) reach += uint32_t(std::ceil(s.normalOffset));
   f.padTexels = reach;
   if (f.resolution < 8 * f.padTexels)
     throw std::invalid_argument("technique 'csm': resolution=" + std::to_string(f.resolution) + " is too small for the filter's padding of " +
                                 std::to_string(f.padTexels) + " texels; use at least " + std::to_string(8 * f.padTexels));
+  if (s.moments) {
+    // The moment blur reaches `blur` world units, a different number of texels per cascade: the
+    // fit pads each cascade by its own share, within the same 1/8 of the region the fixed padding
+    // may take (the technique clamps the blur to what was padded).
+    f.padWorld = s.moment.blur;
+    f.farToRegion = true;
+    f.padWorldMaxTexels = std::min(uint32_t(kMaxBlurRadiusTexels), f.resolution / 8 - f.padTexels);
+  }
   return s;
 }
 

@@ -1,5 +1,6 @@
 #include "csm-technique.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -10,13 +11,13 @@ namespace {
 // cbuffer CsmShadow in shaders-hlsl/csm/shadow.hlsli.
 struct Constants {
   glm::mat4 lightView;
-  glm::vec4 toMapScale[8];   // xyz: light view -> (slice u, slice v, depth)
+  glm::vec4 toMapScale[8];   // xyz: light view -> (slice u, slice v, depth); w: map-select margin (region uv)
   glm::vec4 toMapOffset[8];
   glm::vec4 region[8];       // slice uv of the cascade's region: min.xy, size.xy
   glm::vec4 cascade[8];      // split near, split far (view depth), world texel size, array slice
   glm::vec4 cameraForward;   // w: cascade count
   glm::vec4 settings;        // select, blend, bias mode, normal offset (texels)
-  glm::vec4 mapInfo;         // 1 / texture width, 1 / texture height, map-select margin (region uv), region texels
+  glm::vec4 mapInfo;         // 1 / texture width, 1 / texture height, unused, region texels
 };
 static_assert(sizeof(Constants) == 624);
 
@@ -41,34 +42,67 @@ void CsmTechnique::Configure(Device& device, const ParamValues& params) {
                                 std::to_string(textureWidth_) + "x" + std::to_string(textureHeight_) +
                                 " texels, over the 16384 limit; lower resolution or use storage=array");
 
+  const uint32_t samples = settings_.moments ? settings_.moment.msaa : 1u;
+  if (samples > 1 && device.CheckMultisampleQualityLevels(FORMAT_D32_FLOAT, samples) == 0)
+    throw std::invalid_argument("technique 'csm': msaa=" + std::to_string(samples) + " needs " + std::to_string(samples) +
+                                "x D32_FLOAT depth, which this device does not offer; use msaa=1");
+  moments_.reset();
+  depthSrv_ = nullptr;
+  blurRadii_.assign(cascades, 0.0f);
   TEXTURE2D_DESC td;
-  td.Width = textureWidth_;
-  td.Height = textureHeight_;
-  td.ArraySize = arraySize_;
-  td.Format = FORMAT_R32_TYPELESS;
-  td.BindFlags = BIND_DEPTH_STENCIL | BIND_SHADER_RESOURCE;
+  if (settings_.moments) {
+    MomentMapDesc md;
+    md.options = settings_.moment;
+    md.width = md.height = n;
+    md.layers = cascades;  // storage=array (SettingsFrom)
+    md.anisotropy = uint32_t(settings_.anisotropy);
+    moments_ = std::make_unique<MomentMaps>(device, md);
+    td = moments_->DepthDesc();
+  } else {
+    td.Width = textureWidth_;
+    td.Height = textureHeight_;
+    td.ArraySize = arraySize_;
+    td.Format = FORMAT_R32_TYPELESS;
+    td.BindFlags = BIND_DEPTH_STENCIL | BIND_SHADER_RESOURCE;
+  }
   map_ = device.CreateTexture2D(td);
-  map_->SetDebugName(settings_.storage == Storage::Atlas ? "csm shadow atlas" : "csm cascade array");
+  map_->SetDebugName(settings_.moments ? "csm cascade depth (moments)" : settings_.storage == Storage::Atlas ? "csm shadow atlas" : "csm cascade array");
   dsvs_.clear();
   for (uint32_t s = 0; s < arraySize_; ++s) {
     DEPTH_STENCIL_VIEW_DESC dd;
     dd.Format = FORMAT_D32_FLOAT;
-    dd.ViewDimension = DSV_DIMENSION_TEXTURE2DARRAY;
-    dd.Texture2DArray = {0, s, 1};
+    if (samples > 1) {
+      dd.ViewDimension = DSV_DIMENSION_TEXTURE2DMSARRAY;
+      dd.Texture2DMSArray = {s, 1};
+    } else {
+      dd.ViewDimension = DSV_DIMENSION_TEXTURE2DARRAY;
+      dd.Texture2DArray = {0, s, 1};
+    }
     dsvs_.push_back(device.CreateDepthStencilView(map_.get(), &dd));
   }
-  SHADER_RESOURCE_VIEW_DESC sd;
-  sd.Format = FORMAT_R32_FLOAT;
-  sd.ViewDimension = SRV_DIMENSION_TEXTURE2DARRAY;
-  sd.Texture2DArray = {0, 1, 0, arraySize_};
-  srv_ = device.CreateShaderResourceView(map_.get(), &sd);
+  if (settings_.moments) {
+    depthSrv_ = MomentMaps::MakeDepthSrv(device, map_.get());
+    srv_ = nullptr;  // the lit pass reads the moments, not the depth
+  } else {
+    SHADER_RESOURCE_VIEW_DESC sd;
+    sd.Format = FORMAT_R32_FLOAT;
+    sd.ViewDimension = SRV_DIMENSION_TEXTURE2DARRAY;
+    sd.Texture2DArray = {0, 1, 0, arraySize_};
+    srv_ = device.CreateShaderResourceView(map_.get(), &sd);
+  }
 
   RASTERIZER_DESC rd;
   rd.FrontCounterClockwise = true;  // glTF winding, as in the lit pass
-  rd.DepthBias = settings_.depthBias;
-  // The other bias modes correct the slope in the lookup instead (normal offset, receiver plane).
-  rd.SlopeScaledDepthBias = settings_.bias == Bias::Slope ? settings_.slopeBias : 0.0f;
-  // Casters between the light and a cascade's near plane are pancaked onto it and still cast.
+  if (!settings_.moments) {
+    // Moments need no depth bias: a receiver at the stored depth is lit by construction
+    // (Chebyshev gives 1 at or in front of the mean, ESM saturates), and a bias would only move
+    // the occluders away from their receivers (peter-panning) and widen the depth distribution.
+    rd.DepthBias = settings_.depthBias;
+    // The other bias modes correct the slope in the lookup instead (normal offset, receiver plane).
+    rd.SlopeScaledDepthBias = settings_.bias == Bias::Slope ? settings_.slopeBias : 0.0f;
+  }
+  // Casters between the light and a cascade's near plane are pancaked onto it and still cast
+  // (with moments too: the clamped depth 0 is a valid occluder depth for the warps).
   rd.DepthClipEnable = false;
   rasterizer_ = device.CreateRasterizerState(rd);
 
@@ -89,7 +123,13 @@ void CsmTechnique::Configure(Device& device, const ParamValues& params) {
 
 std::vector<hlsl::Define> CsmTechnique::Defines(const CsmSettings& s) {
   // Everything else (selection, blending, bias mode, storage) is a uniform branch on constants, so
-  // the parameter space compiles to 17 shader variants instead of hundreds.
+  // the parameter space compiles to 17 comparison variants instead of hundreds; the moment filters
+  // add one per kind, precision, exponent and bleed setting (MomentDefines).
+  if (s.moments) {
+    std::vector<hlsl::Define> d = MomentDefines(s.moment);
+    d.push_back({"CSM_MOMENTS", "1"});
+    return d;
+  }
   int kernel = s.filter == 0 ? 3 : s.kernel;
   return {{"SHADOW_FILTER", std::to_string(s.filter)}, {"SHADOW_KERNEL", std::to_string(kernel)}};
 }
@@ -113,18 +153,34 @@ void CsmTechnique::WriteConstants(DeviceContext& ctx, const FrameInputs& frame) 
     // orthographic projection (distance -z from zNear to zFar).
     glm::vec3 scale(1.0f / (f.max.x - f.min.x), -1.0f / (f.max.y - f.min.y), -1.0f / (f.zFar - f.zNear));
     glm::vec3 offset(-f.min.x * scale.x, f.max.y / (f.max.y - f.min.y), -f.zNear / (f.zFar - f.zNear));
-    k.toMapScale[c] = glm::vec4(scale.x * rsize.x, scale.y * rsize.y, scale.z, 0.0f);
+    k.toMapScale[c] = glm::vec4(scale.x * rsize.x, scale.y * rsize.y, scale.z, float(f.padTexels) / n);
     k.toMapOffset[c] = glm::vec4(offset.x * rsize.x + rmin.x, offset.y * rsize.y + rmin.y, offset.z, 0.0f);
     k.region[c] = glm::vec4(rmin, rsize);
     k.cascade[c] = glm::vec4(f.splitNear, f.splitFar, f.texelWorld, float(r.slice));
   }
   k.cameraForward = glm::vec4(frame.camera.forward(), float(fit_.cascades.size()));
   k.settings = glm::vec4(settings_.select == Select::Map ? 1.0f : 0.0f, settings_.fit.blend, float(int(settings_.bias)), settings_.normalOffset);
-  k.mapInfo = glm::vec4(1.0f / w, 1.0f / h, float(settings_.fit.padTexels) / n, n);
+  k.mapInfo = glm::vec4(1.0f / w, 1.0f / h, 0.0f, n);
   ctx.UpdateSubresource(constants_.get(), 0, nullptr, &k, 0, 0);
 }
 
 void CsmTechnique::RenderShadows(DeviceContext& ctx, SceneDrawer& drawer, const FrameInputs& frame) {
+  DrawCascades(ctx, drawer, frame);
+  if (!moments_) return;
+  // Convert reads the depth through an SRV: it must not stay bound for writing.
+  ctx.OMSetRenderTargets(0, nullptr, nullptr);
+  const uint32_t n = settings_.fit.resolution;
+  for (size_t c = 0; c < fit_.cascades.size(); ++c) {
+    const CascadeFit& f = fit_.cascades[c];
+    // The same world radius in every cascade, within what the fit padded for it. (texelWorld is
+    // the larger axis's texel: with stabilize=0 and oblong texels the other axis blurs less.)
+    float padded = float(f.padTexels - settings_.fit.padTexels);
+    blurRadii_[c] = std::min(BlurRadiusTexels(settings_.moment.blur, f.texelWorld * float(n), n), padded);
+  }
+  moments_->Convert(ctx, depthSrv_.get(), blurRadii_, frame.timer);
+}
+
+void CsmTechnique::DrawCascades(DeviceContext& ctx, SceneDrawer& drawer, const FrameInputs& frame) {
   GpuTimer::Scope timed(frame.timer, ctx, "shadow");
   const scene::Scene& scene = *frame.scene;
   float aspect = frame.height ? float(frame.width) / float(frame.height) : 1.0f;
@@ -163,13 +219,17 @@ void CsmTechnique::RenderShadows(DeviceContext& ctx, SceneDrawer& drawer, const 
 
 void CsmTechnique::BindLighting(DeviceContext& ctx) {
   ctx.PSSetConstantBuffers(2, {constants_.get()});
-  ctx.PSSetShaderResources(0, {srv_.get()});
-  ctx.PSSetSamplers(0, {sampler_.get()});
+  ctx.PSSetShaderResources(0, {moments_ ? moments_->Srv() : srv_.get()});
+  ctx.PSSetSamplers(0, {moments_ ? moments_->Sampler() : sampler_.get()});
 }
 
 ShadowStats CsmTechnique::Stats() const {
   ShadowStats s;
-  s.memoryBytes = uint64_t(textureWidth_) * textureHeight_ * arraySize_ * 4;
+  if (!map_) return s;
+  const TEXTURE2D_DESC& td = map_->GetDesc();
+  // The depth (all its samples), and with moment filters the moment array, mips and blur target.
+  s.memoryBytes = uint64_t(td.Width) * td.Height * td.ArraySize * td.SampleDesc.Count * 4;
+  if (moments_) s.memoryBytes += moments_->MemoryBytes();
   for (uint64_t t : cascadeTriangles_) s.trianglesSubmitted += t;
   return s;
 }

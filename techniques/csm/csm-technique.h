@@ -4,8 +4,32 @@
 // (storage=atlas: the same kind of texture with one slice, cascades side by side). One cascade is
 // the plain focused shadow map. CPU fitting is in cascade-fit.h, lighting in
 // shaders-hlsl/csm/shadow.hlsli, filtering in shaders-hlsl/common/shadow-filter.hlsli.
+//
+// Moment filters (filter=vsm|esm|evsm2|evsm4|msm, techniques/moments): the cascades render plain
+// depth (4x MSAA with msaa=4) without depth bias, MomentMaps turns the array into mipmapped
+// moments (resolve, blur of `blur` world units converted per cascade, mips), and the lighting
+// samples them with a trilinear/anisotropic SampleGrad. Choices made for them:
+//  - storage=array only: the blur and the mip chain would mix neighbouring atlas regions;
+//  - of the bias modes only bias=normal applies (its normal offset moves the lookup); depth_bias,
+//    slope_bias and the receiver plane are comparison-filter tools and are ignored, as `kernel` is;
+//  - the fit pads each cascade by its own share of the blur (FitSettings::padWorld) and puts its
+//    far plane behind everything in its region (farToRegion): moments average neighbouring
+//    depths, so depths clamped at the far plane would make receivers near it shadow themselves;
+//    the lookup's footprint is also kept inside the region (shadow.hlsli) for the same reason;
+//  - msaa=4 renders a 4x D32 array (Texture2DMSArray; Configure names msaa when the device has
+//    no 4x D32_FLOAT) that MomentMaps resolves into moments, never storing multisampled moments;
+//  - msaa, blur, bleed, exponents, precision and anisotropy are validated for every filter but
+//    ignored by the comparison filters, so one bench sweep over `filter` can share them;
+//  - the lookups are trilinear unless anisotropy > 1. On Mesa 22.3 (llvmpipe and lavapipe alike)
+//    an anisotropic sampler darkens every 2x2 quad that spans two cascades, a line along each
+//    split, even with SampleGrad's explicit gradients or an explicit LOD (as if the footprint came
+//    from the quad's own coordinates, which jump between regions there), and the lit pass takes
+//    about 30 times longer.
 #pragma once
+#include <memory>
+
 #include "cascade-fit.h"
+#include "moments/moment-maps.h"
 #include "technique.h"
 
 namespace sp::tech::csm {
@@ -19,8 +43,11 @@ struct CsmSettings {
   FitSettings fit;
   Select select = Select::Interval;
   Storage storage = Storage::Array;
-  int filter = 0;  // SHADOW_FILTER: 0 hw2x2, 1 box, 2 gauss, 3 gathercmp, 4 poisson
+  int filter = 0;  // SHADOW_FILTER: 0 hw2x2, 1 box, 2 gauss, 3 gathercmp, 4 poisson (unused with moments)
   int kernel = 3;
+  bool moments = false;  // a moment filter; `moment` holds its options
+  MomentOptions moment;
+  int anisotropy = 1;    // of the moment lookups' sampler; 1 = trilinear
   Bias bias = Bias::Slope;
   int depthBias = 100;
   float slopeBias = 2.0f;
@@ -28,7 +55,8 @@ struct CsmSettings {
 };
 
 std::vector<ParamSpec> CsmParams();
-// Throws std::invalid_argument for what ParamValues::Parse cannot check (the manual split list).
+// Throws std::invalid_argument for what ParamValues::Parse cannot check (the manual split list,
+// the moment parameters' values, moment filters with storage=atlas).
 CsmSettings SettingsFrom(const ParamValues& params);
 
 // Where a cascade lives in the shadow texture.
@@ -55,11 +83,16 @@ class CsmTechnique final : public Technique {
   const CsmSettings& settings() const { return settings_; }
   const CascadeSet& lastFit() const { return fit_; }
   const std::vector<uint64_t>& lastCascadeTriangles() const { return cascadeTriangles_; }
+  // The depth the cascades render (with moment filters: MomentMaps' depth, 4x with msaa=4).
   Texture2D* shadowTexture() const { return map_.get(); }
   CascadeRegion region(int cascade) const;
+  const MomentMaps* momentMaps() const { return moments_.get(); }
+  // Blur radius per cascade, in its texels, of the last frame (moment filters).
+  const std::vector<float>& lastBlurRadii() const { return blurRadii_; }
 
  private:
   void WriteConstants(DeviceContext& ctx, const FrameInputs& frame);
+  void DrawCascades(DeviceContext& ctx, SceneDrawer& drawer, const FrameInputs& frame);
 
   CsmSettings settings_;
   uint32_t columns_ = 1, rows_ = 1;  // atlas grid
@@ -72,6 +105,9 @@ class CsmTechnique final : public Technique {
   Ref<Buffer> constants_;
   CascadeSet fit_;
   std::vector<uint64_t> cascadeTriangles_;
+  std::unique_ptr<MomentMaps> moments_;
+  Ref<ShaderResourceView> depthSrv_;  // map_ as MomentMaps::Convert reads it
+  std::vector<float> blurRadii_;
 };
 
 }  // namespace sp::tech::csm

@@ -65,7 +65,8 @@ bool IsMomentFilter(const std::string& name);
 std::string MomentKindName(MomentKind kind);
 
 // Reads `filter`, `msaa`, `blur`, `bleed`, `exponents`, `precision` from `params` (other keys are
-// ignored, so a technique can pass all its values). Missing keys and the value "auto" take the
+// ignored, so a technique can pass all its values); evsm's two exponents are separated by a comma
+// or a colon (bench sweeps split values at commas). Missing keys and the value "auto" take the
 // defaults: msaa 1, blur 0, precision fp32, and per kind
 //   bleed      vsm 0.2, esm 0, evsm2 0.1, evsm4 0.05, msm 0.03
 //   exponents  esm 80 (fp32) / 11.08 (16-bit); evsm (40, 5), clamped for 16-bit to (5.54, 5)

@@ -110,10 +110,11 @@ MomentOptions ParseMomentOptions(const std::map<std::string, std::string>& param
   }
 
   std::string exps = Get(params, "exponents");
-  const std::string validExps = "X (esm) or X,Y (evsm: positive and negative exponent), numbers > 0, or auto";
+  const std::string validExps = "X (esm) or X,Y or X:Y (evsm: positive and negative exponent), numbers > 0, or auto";
   glm::vec2 e = o.kind == MomentKind::Esm ? glm::vec2(80.0f, 0.0f) : glm::vec2(40.0f, 5.0f);
   if (exps != "auto") {
-    size_t comma = exps.find(',');
+    // A colon too: `shadowport bench` reads commas in --param values as a sweep.
+    size_t comma = exps.find_first_of(",:");
     e.x = ParseNumber("exponents", exps.substr(0, comma), validExps, exps);
     if (comma != std::string::npos) e.y = ParseNumber("exponents", exps.substr(comma + 1), validExps, exps);
     if (e.x <= 0 || (comma != std::string::npos && e.y <= 0)) Invalid("exponents", exps, validExps);
@@ -145,7 +146,7 @@ std::vector<ParamSpec> MomentParamSpecs() {
       {ParamSpec::Choice, "msaa", "samples of the moment filters' depth pass (resolved into moments)", "1", 0, 0, {"1", "4"}},
       {ParamSpec::Text, "blur", "moment blur radius in world units (0 = none)", "0", 0, 0, {}},
       {ParamSpec::Text, "bleed", "light-bleeding reduction in [0, 1), or auto (per filter)", "auto", 0, 0, {}},
-      {ParamSpec::Text, "exponents", "esm: c; evsm: c+,c-; or auto (clamped to the format)", "auto", 0, 0, {}},
+      {ParamSpec::Text, "exponents", "esm: c; evsm: c+,c- or c+:c- (the colon form for bench sweeps); or auto (clamped to the format)", "auto", 0, 0, {}},
       {ParamSpec::Choice, "precision", "moment storage: 16 or 32 bits per channel", "fp32", 0, 0, {"fp16", "fp32"}},
   };
 }
