@@ -8,6 +8,7 @@ namespace sp::tech {
 
 std::unique_ptr<Technique> MakeBasicTechnique();
 std::unique_ptr<Technique> MakeCsmTechnique();
+std::unique_ptr<Technique> MakeSdsmTechnique();
 
 namespace {
 struct Entry {
@@ -18,6 +19,7 @@ struct Entry {
 const Entry kTechniques[] = {
     {"basic", MakeBasicTechnique},
     {"csm", MakeCsmTechnique},
+    {"sdsm", MakeSdsmTechnique},
 };
 }  // namespace
 

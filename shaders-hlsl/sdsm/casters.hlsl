@@ -8,6 +8,7 @@
 //! cs_5_0 CullCasters
 //! vs_5_0 VSCaster
 //! vs_5_0 VSCasterId
+//! vs_5_0 VSCasterGpu
 #define SDSM_LAYOUT_ONLY
 #include "sdsm/analysis.hlsli"
 
@@ -86,8 +87,12 @@ StructuredBuffer<uint> visible : register(t1);
 cbuffer SdsmCasterDraw : register(b0) {
   float4x4 casterViewProj;  // world -> the partition's shadow clip space
   uint listBase;            // partition * instanceCount + the batch's listOffset
-  uint3 casterPad;
+  uint matrixAddress;       // VSCasterGpu: byte address of the partition's matrix in partitionMatrices
+  uint2 casterPad;
 };
+// VSCasterGpu: world -> clip matrices written by a compute pass (sdsm cull=gpu: FitPartitions in
+// sdsm/fit.hlsl), four float4 rows each, so the CPU never learns the partition's projection.
+ByteAddressBuffer partitionMatrices : register(t2);
 
 float4 CasterPosition(float3 pos, uint instance) {
   CasterTransform t = transforms[instance];
@@ -99,6 +104,17 @@ float4 CasterPosition(float3 pos, uint instance) {
 // SV_InstanceID counts from 0 in every draw (the records' StartInstanceLocation is 0).
 float4 VSCaster(float3 pos : POSITION, uint inst : SV_InstanceID) : SV_Position {
   return CasterPosition(pos, visible[listBase + inst]);
+}
+
+float4 VSCasterGpu(float3 pos : POSITION, uint inst : SV_InstanceID) : SV_Position {
+  CasterTransform t = transforms[visible[listBase + inst]];
+  float4 p = float4(pos, 1.0);
+  float4 world = float4(dot(t.row0, p), dot(t.row1, p), dot(t.row2, p), 1.0);
+  float4 r0 = asfloat(partitionMatrices.Load4(matrixAddress));
+  float4 r1 = asfloat(partitionMatrices.Load4(matrixAddress + 16));
+  float4 r2 = asfloat(partitionMatrices.Load4(matrixAddress + 32));
+  float4 r3 = asfloat(partitionMatrices.Load4(matrixAddress + 48));
+  return float4(dot(r0, world), dot(r1, world), dot(r2, world), dot(r3, world));
 }
 
 // The same, passing the scene instance index on (for tests and debug views).

@@ -37,7 +37,7 @@ struct CullConstants {  // cbuffer SdsmCull
 static_assert(sizeof(CullConstants) == 80);
 struct DrawConstants {  // cbuffer SdsmCasterDraw
   glm::mat4 viewProj;
-  uint32_t listBase, pad[3];
+  uint32_t listBase, matrixAddress, pad[2];
 };
 static_assert(sizeof(DrawConstants) == 80);
 
@@ -137,10 +137,13 @@ CasterCuller::CasterCuller(Device& device, const scene::GpuScene& scene) : scene
   const INPUT_ELEMENT_DESC* el = scene::GpuScene::InputElements(&elements);
   ShaderBytecode vs = CompileTechniqueShader("sdsm/casters.hlsl", "vs_5_0", "VSCaster");
   ShaderBytecode vsId = CompileTechniqueShader("sdsm/casters.hlsl", "vs_5_0", "VSCasterId");
+  ShaderBytecode vsGpu = CompileTechniqueShader("sdsm/casters.hlsl", "vs_5_0", "VSCasterGpu");
   vs_ = device.CreateVertexShader(vs);
   vsId_ = device.CreateVertexShader(vsId);
+  vsGpu_ = device.CreateVertexShader(vsGpu);
   layout_ = device.CreateInputLayout(el, elements, vs);
   layoutId_ = device.CreateInputLayout(el, elements, vsId);
+  layoutGpu_ = device.CreateInputLayout(el, elements, vsGpu);
 }
 
 void CasterCuller::Cull(DeviceContext& ctx, ShaderResourceView* results, const glm::mat4& lightView, uint32_t partitionCount,
@@ -163,14 +166,27 @@ void CasterCuller::Cull(DeviceContext& ctx, ShaderResourceView* results, const g
 
 uint32_t CasterCuller::DrawPartition(DeviceContext& ctx, uint32_t partition, const glm::mat4& viewProj, Shader shader) {
   if (partition >= kMaxPartitions) throw std::invalid_argument("CasterCuller::DrawPartition: partition out of range");
-  scene_.BindGeometry(ctx);
   bool id = shader == Shader::InstanceId;
   ctx.IASetInputLayout(id ? layoutId_.get() : layout_.get());
   ctx.VSSetShader(id ? vsId_.get() : vs_.get());
+  return Draw(ctx, partition, viewProj, 0);
+}
+
+uint32_t CasterCuller::DrawPartition(DeviceContext& ctx, uint32_t partition, ShaderResourceView* matrices, uint32_t matrixAddress) {
+  if (partition >= kMaxPartitions) throw std::invalid_argument("CasterCuller::DrawPartition: partition out of range");
+  if (!matrices || matrixAddress % 16 != 0) throw std::invalid_argument("CasterCuller::DrawPartition: needs a matrix buffer and a 16-byte aligned address");
+  ctx.IASetInputLayout(layoutGpu_.get());
+  ctx.VSSetShader(vsGpu_.get());
+  ctx.VSSetShaderResources(2, {matrices});
+  return Draw(ctx, partition, glm::mat4(1.0f), matrixAddress);
+}
+
+uint32_t CasterCuller::Draw(DeviceContext& ctx, uint32_t partition, const glm::mat4& viewProj, uint32_t matrixAddress) {
+  scene_.BindGeometry(ctx);
   ctx.VSSetShaderResources(0, {transformsSrv_.get(), visibleSrv_.get()});
   uint32_t draws = 0;
   for (uint32_t b = 0; b < batches_.size(); ++b) {
-    DrawConstants d{viewProj, partition * casterCount() + batches_[b].listOffset, {0, 0, 0}};
+    DrawConstants d{viewProj, partition * casterCount() + batches_[b].listOffset, matrixAddress, {0, 0}};
     MAPPED_SUBRESOURCE m;
     ctx.Map(drawConstants_.get(), 0, MAP_WRITE_DISCARD, 0, &m);
     std::memcpy(m.pData, &d, sizeof(d));

@@ -63,6 +63,10 @@ class CasterCuller {
   // caster index as `nointerpolation uint INSTANCE` (shaders-hlsl/sdsm/casters.hlsl, VSCasterId).
   // Returns the number of draw calls issued.
   uint32_t DrawPartition(DeviceContext& ctx, uint32_t partition, const glm::mat4& viewProj, Shader shader = Shader::DepthOnly);
+  // The same with the world -> clip matrix read on the GPU: four float4 rows at byte
+  // `matrixAddress` of `matrices` (a raw view; bound to VS t2, left bound). For partitions whose
+  // projection only the GPU knows (the sdsm technique's cull=gpu).
+  uint32_t DrawPartition(DeviceContext& ctx, uint32_t partition, ShaderResourceView* matrices, uint32_t matrixAddress);
 
   uint32_t casterCount() const { return uint32_t(casters_.size()); }
   uint32_t sceneInstance(uint32_t caster) const { return casters_[caster]; }
@@ -80,8 +84,10 @@ class CasterCuller {
   Ref<ShaderResourceView> instancesSrv_, batchesSrv_, transformsSrv_, visibleSrv_;
   Ref<UnorderedAccessView> visibleUav_, argsUav_;
   Ref<ComputeShader> reset_, cull_;
-  Ref<VertexShader> vs_, vsId_;
-  Ref<InputLayout> layout_, layoutId_;
+  uint32_t Draw(DeviceContext& ctx, uint32_t partition, const glm::mat4& viewProj, uint32_t matrixAddress);
+
+  Ref<VertexShader> vs_, vsId_, vsGpu_;
+  Ref<InputLayout> layout_, layoutId_, layoutGpu_;
 };
 
 }  // namespace sp::tech::sdsm
