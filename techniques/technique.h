@@ -91,6 +91,10 @@ class SceneDrawer {
   Ref<InputLayout> depthLayout_;
 };
 
+// One D32_FLOAT depth-stencil view per array slice of a shadow-map array (R32_TYPELESS, single
+// or multisampled), for techniques that render one cascade or partition per slice.
+std::vector<Ref<DepthStencilView>> MakeSliceDepthViews(Device& device, Texture2D* texture);
+
 // One layer of a technique's shadow maps as the lab's ShadowLocate() numbers them (a cascade, an
 // array slice, an atlas region): its size in texels. Layer i of Layers() is layer id i in HLSL.
 struct ShadowLayer {

@@ -67,19 +67,7 @@ void CsmTechnique::Configure(Device& device, const ParamValues& params) {
   }
   map_ = device.CreateTexture2D(td);
   map_->SetDebugName(settings_.moments ? "csm cascade depth (moments)" : settings_.storage == Storage::Atlas ? "csm shadow atlas" : "csm cascade array");
-  dsvs_.clear();
-  for (uint32_t s = 0; s < arraySize_; ++s) {
-    DEPTH_STENCIL_VIEW_DESC dd;
-    dd.Format = FORMAT_D32_FLOAT;
-    if (samples > 1) {
-      dd.ViewDimension = DSV_DIMENSION_TEXTURE2DMSARRAY;
-      dd.Texture2DMSArray = {s, 1};
-    } else {
-      dd.ViewDimension = DSV_DIMENSION_TEXTURE2DARRAY;
-      dd.Texture2DArray = {0, s, 1};
-    }
-    dsvs_.push_back(device.CreateDepthStencilView(map_.get(), &dd));
-  }
+  dsvs_ = MakeSliceDepthViews(device, map_.get());
   if (settings_.moments) {
     depthSrv_ = MomentMaps::MakeDepthSrv(device, map_.get());
     srv_ = nullptr;  // the lit pass reads the moments, not the depth

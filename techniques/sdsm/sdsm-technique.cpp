@@ -49,6 +49,7 @@ void SdsmTechnique::Configure(Device& device, const ParamValues& params) {
     md.options = cs.moment;
     md.width = md.height = n_;
     md.layers = k_;
+    md.anisotropy = uint32_t(cs.anisotropy);
     moments_ = std::make_unique<MomentMaps>(device, md);
     td = moments_->DepthDesc();
   } else {
@@ -59,19 +60,7 @@ void SdsmTechnique::Configure(Device& device, const ParamValues& params) {
   }
   map_ = device.CreateTexture2D(td);
   map_->SetDebugName(cs.moments ? "sdsm partition depth (moments)" : "sdsm partition array");
-  dsvs_.clear();
-  for (uint32_t s = 0; s < k_; ++s) {
-    DEPTH_STENCIL_VIEW_DESC dd;
-    dd.Format = FORMAT_D32_FLOAT;
-    if (samples > 1) {
-      dd.ViewDimension = DSV_DIMENSION_TEXTURE2DMSARRAY;
-      dd.Texture2DMSArray = {s, 1};
-    } else {
-      dd.ViewDimension = DSV_DIMENSION_TEXTURE2DARRAY;
-      dd.Texture2DArray = {0, s, 1};
-    }
-    dsvs_.push_back(device.CreateDepthStencilView(map_.get(), &dd));
-  }
+  dsvs_ = MakeSliceDepthViews(device, map_.get());
   srv_ = depthSrvForMoments_ = nullptr;
   if (cs.moments) {
     depthSrvForMoments_ = MomentMaps::MakeDepthSrv(device, map_.get());

@@ -1,4 +1,4 @@
-// The floating-box scene of the csm tests (tests/techniques/csm-*.cpp): a floor, a box above it,
+// The floating-box scene of the technique tests (basic, csm, sdsm): a floor, a box above it,
 // the light at 45 degrees, and the box's shadow on the floor computed on the CPU.
 #pragma once
 #include <algorithm>
