@@ -91,7 +91,9 @@ struct MomentMapDesc {
   MomentOptions options;
   uint32_t width = 0, height = 0, layers = 1;
   bool mips = true;         // full mip chain (for trilinear and anisotropic lookups)
-  uint32_t anisotropy = 8;  // of Sampler(); 1 = trilinear
+  // Of Sampler(); 1 = trilinear. Mesa 22.3 darkens partition splits with anisotropic lookups and is
+  // ~30x slower, so techniques default to 1 and offer it as a parameter.
+  uint32_t anisotropy = 1;
 };
 
 class MomentMaps {

@@ -12,7 +12,7 @@ namespace {
 // focus, stabilize (the partitions are fitted to the samples; quantize is sdsm's stability
 // option), select (interval: the splits are where the samples are), storage (array).
 const char* const kSharedCsmParams[] = {"cascades", "resolution", "blend", "filter", "kernel", "bias", "depth_bias",
-                                        "slope_bias", "normal_offset", "msaa", "blur", "bleed", "exponents", "precision"};
+                                        "slope_bias", "normal_offset", "msaa", "blur", "bleed", "exponents", "precision", "anisotropy"};
 
 std::string Rename(const std::string& message) {
   const std::string from = "technique 'csm'";
