@@ -288,7 +288,10 @@ def setup_summary(runs):
 
 def technique_labels(runs):
     """{(technique, params_key): label}: the technique followed by only the parameters that tell
-    its variants among `runs` apart, so labels stay short where a technique has one setting."""
+    its variants among `runs` apart, so labels stay short where a technique has one setting.
+    With many variants (sweeps of several parameters merged into one page) a parameter is named
+    only where it differs from its most common value, which for one-parameter-at-a-time sweeps
+    is the default: "csm cascades=1 resolution=2048" rather than every swept parameter."""
     variants = {}
     for run in runs:
         variants.setdefault(run.technique, {})[run.params_key] = run.params
@@ -296,8 +299,18 @@ def technique_labels(runs):
     for technique, by_params in variants.items():
         names = sorted({k for params in by_params.values() for k in params}, key=natural_key)
         varying = [k for k in names if len({params.get(k) for params in by_params.values()}) > 1]
+        common = {}
+        for k in varying:
+            counts = {}
+            for params in by_params.values():
+                counts[params.get(k)] = counts.get(params.get(k), 0) + 1
+            # Most frequent value; ties go to the first seen, so the choice is deterministic.
+            common[k] = max(counts, key=counts.get)
         for params_key, params in by_params.items():
-            parts = [f"{k}={params[k]}" for k in varying if k in params]
+            if len(by_params) > 4:
+                parts = [f"{k}={params[k]}" for k in varying if k in params and params[k] != common[k]]
+            else:
+                parts = [f"{k}={params[k]}" for k in varying if k in params]
             labels[(technique, params_key)] = " ".join([technique] + parts)
     return labels
 
