@@ -4,6 +4,8 @@
 //   bytes  384..1007  cbuffer CsmShadow of csm/shadow.hlsli, byte for byte; the technique copies
 //                     this range into the lit pass's constant buffer (CopySubresourceRegion)
 //   bytes 1008..1519  per partition the world -> clip matrix as four rows (VSCasterGpu)
+//   bytes 1520..1583  the moment blur's radius per layer in texels (16 floats, as cbuffer
+//                     MomentBlur's blurRadius of moments/blur.hlsl holds them; copied there)
 // The arithmetic is FitPartition's (techniques/sdsm/sdsm-technique-fit.cpp) operation for
 // operation; `precise` keeps the compiler from fusing it into multiply-adds the CPU does not do.
 //! cs_5_0 FitPartitions
@@ -12,6 +14,8 @@
 
 #define SDSM_FIT_CONSTANTS 384
 #define SDSM_FIT_MATRICES 1008
+#define SDSM_FIT_BLUR 1520
+#define SDSM_FIT_BLUR_LAYERS 16  // kMaxMomentLayers
 
 cbuffer SdsmFit : register(b0) {
   float4 fitLightView[4];   // world -> light view as glm stores it (columns), copied verbatim
@@ -21,7 +25,7 @@ cbuffer SdsmFit : register(b0) {
   float4 fitCameraForward;  // xyz: camera forward; w: partition count K
   float4 fitSettings;       // csmSettings: select, blend, bias mode, normal offset
   float4 fitParams;         // resolution, padding texels, dilation, tight (0 or 1)
-  float4 fitBlur;           // moment blur radius (world), its padding limit (texels), 0, 0
+  float4 fitBlur;           // moment blur radius (world); its padding limit, the blur's radius limit (texels); 0
 };
 
 ByteAddressBuffer analysis : register(t0);
@@ -51,6 +55,7 @@ void WriteEmpty(uint p) {
   StoreRow(CSM_OFFSET(p), float4(-1.0, -1.0, 2.0, 0.0));
   StoreRow(CSM_REGION(p), float4(0.0, 0.0, 1.0, 1.0));
   for (uint r = 0; r < 4; ++r) StoreRow(SDSM_FIT_MATRICES + p * 64 + r * 16, float4(0.0, 0.0, 0.0, 0.0));
+  fitOut.Store(SDSM_FIT_BLUR + p * 4, asuint(0.0));
 }
 
 [numthreads(SDSM_MAX_PARTITIONS, 1, 1)]
@@ -63,6 +68,7 @@ void FitPartitions(uint p : SV_GroupThreadID) {
     StoreRow(CSM_FORWARD, fitCameraForward);
     StoreRow(CSM_SETTINGS, fitSettings);
     StoreRow(CSM_MAP_INFO, float4(1.0 / N, 1.0 / N, 0.0, N));
+    for (uint l = SDSM_MAX_PARTITIONS; l < SDSM_FIT_BLUR_LAYERS; ++l) fitOut.Store(SDSM_FIT_BLUR + l * 4, asuint(0.0));
   }
   if (p >= K) {
     WriteEmpty(p);
@@ -131,6 +137,17 @@ void FitPartitions(uint p : SV_GroupThreadID) {
   StoreRow(CSM_OFFSET(p), float4(offset, 0.0));
   StoreRow(CSM_REGION(p), float4(0.0, 0.0, 1.0, 1.0));
   StoreRow(CSM_CASCADE(p), float4(splitNear, selectFar, texel, float(p)));
+
+  // The world blur radius in this map's texels, as the CPU path's BlurRadiusTexels of the fitted
+  // size (same operations), capped by the blur padding reserved above so the kernel never
+  // reaches past the map: every partition blurs the same world distance.
+  float radius = 0.0;
+  if (fitBlur.x > 0.0) {
+    precise float layerWidth = texel * N;
+    precise float r = fitBlur.x * N / layerWidth;
+    radius = min(min(r, fitBlur.z), pad - fitParams.y);
+  }
+  fitOut.Store(SDSM_FIT_BLUR + p * 4, asuint(radius));
 
   // Light view -> clip: x = 2u - 1, y = 1 - 2v, z = depth.
   float4 rowX = float4(fitLightView[0].x, fitLightView[1].x, fitLightView[2].x, fitLightView[3].x);

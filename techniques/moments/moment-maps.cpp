@@ -2,6 +2,8 @@
 // and blur.hlsl) and GenerateMips. The passes write through UAVs so one dispatch covers every
 // layer (thread group z = layer), which render-target passes could not without a view per slice.
 #include <algorithm>
+#include <cstddef>
+#include <cstring>
 #include <stdexcept>
 
 #include "moment-maps.h"
@@ -23,6 +25,7 @@ struct BlurConstants {
   float radius[kMaxMomentLayers];
 };
 static_assert(sizeof(BlurConstants) == 96);
+static_assert(sizeof(BlurConstants::radius) == kMomentBlurRadiiBytes);
 
 Ref<Buffer> ConstantBuffer(Device& device, uint32_t size, const char* name) {
   BUFFER_DESC d;
@@ -132,67 +135,115 @@ void MomentMaps::Dispatch(DeviceContext& ctx, ComputeShader* cs, ShaderResourceV
   ctx.CSSetUnorderedAccessViews(0, {nullptr});
 }
 
-void MomentMaps::Convert(DeviceContext& ctx, ShaderResourceView* depthSrv, const std::vector<float>& radii, GpuTimer* timer) {
+void MomentMaps::CheckDepthSrv(ShaderResourceView* depthSrv) const {
   if (!depthSrv) throw std::invalid_argument("MomentMaps::Convert: depthSrv is null");
   const SRV_DIMENSION want = desc_.options.msaa > 1 ? SRV_DIMENSION_TEXTURE2DMSARRAY : SRV_DIMENSION_TEXTURE2DARRAY;
   if (depthSrv->GetDesc().ViewDimension != want)
     throw std::invalid_argument(std::string("MomentMaps::Convert: the depth SRV must be ") +
                                 (desc_.options.msaa > 1 ? "SRV_DIMENSION_TEXTURE2DMSARRAY (msaa=4)" : "SRV_DIMENSION_TEXTURE2DARRAY (msaa=1)"));
+}
+
+void MomentMaps::Convert(DeviceContext& ctx, ShaderResourceView* depthSrv, const std::vector<float>& radii, GpuTimer* timer) {
+  CheckDepthSrv(depthSrv);
   if (!radii.empty() && radii.size() != desc_.layers)
     throw std::invalid_argument("MomentMaps::Convert: " + std::to_string(radii.size()) + " blur radii for " + std::to_string(desc_.layers) +
                                 " layers (give one per layer, or none)");
   bool blur = false;
   for (float r : radii) blur |= r >= 1e-3f;
+  Resolve(ctx, depthSrv, timer);
+  blurred_ = blur;
+  if (blur) Blur(ctx, radii, nullptr, timer);
+  FinishMips(ctx, timer);
+}
 
-  {
-    GpuTimer::Scope timed(timer, ctx, "moments");
-    ResolveConstants rc{desc_.width, desc_.height, desc_.layers, 0};
-    ctx.UpdateSubresource(resolveConstants_.get(), 0, nullptr, &rc, 0, 0);
-    ctx.CSSetConstantBuffers(0, {resolveConstants_.get()});
-    Dispatch(ctx, resolve_.get(), depthSrv, uavTop_.get());
+void MomentMaps::ConvertWithGpuRadii(DeviceContext& ctx, ShaderResourceView* depthSrv, const GpuBlurRadii& radii, GpuTimer* timer) {
+  CheckDepthSrv(depthSrv);
+  if (!radii.buffer) throw std::invalid_argument("MomentMaps::ConvertWithGpuRadii: the radii buffer is null");
+  if (radii.offset % 4 != 0 || uint64_t(radii.offset) + kMomentBlurRadiiBytes > radii.buffer->GetDesc().ByteWidth)
+    throw std::invalid_argument("MomentMaps::ConvertWithGpuRadii: the radii at offset " + std::to_string(radii.offset) + " of a " +
+                                std::to_string(radii.buffer->GetDesc().ByteWidth) + "-byte buffer are not " +
+                                std::to_string(kMomentBlurRadiiBytes) + " bytes at a multiple of 4");
+  Resolve(ctx, depthSrv, timer);
+  blurred_ = true;
+  Blur(ctx, {}, &radii, timer);
+  FinishMips(ctx, timer);
+}
+
+void MomentMaps::Resolve(DeviceContext& ctx, ShaderResourceView* depthSrv, GpuTimer* timer) {
+  GpuTimer::Scope timed(timer, ctx, "moments");
+  ResolveConstants rc{desc_.width, desc_.height, desc_.layers, 0};
+  ctx.UpdateSubresource(resolveConstants_.get(), 0, nullptr, &rc, 0, 0);
+  ctx.CSSetConstantBuffers(0, {resolveConstants_.get()});
+  Dispatch(ctx, resolve_.get(), depthSrv, uavTop_.get());
+}
+
+void MomentMaps::Blur(DeviceContext& ctx, const std::vector<float>& radii, const GpuBlurRadii* gpu, GpuTimer* timer) {
+  GpuTimer::Scope timed(timer, ctx, "blur");
+  if (!temp_) {
+    TEXTURE2D_DESC td;
+    td.Width = desc_.width;
+    td.Height = desc_.height;
+    td.ArraySize = desc_.layers;
+    td.Format = format_;
+    td.BindFlags = BIND_SHADER_RESOURCE | BIND_UNORDERED_ACCESS;
+    temp_ = device_.CreateTexture2D(td);
+    temp_->SetDebugName("moments blur temp");
+    SHADER_RESOURCE_VIEW_DESC sd;
+    sd.Format = format_;
+    sd.ViewDimension = SRV_DIMENSION_TEXTURE2DARRAY;  // also for one layer: the shader declares an array
+    sd.Texture2DArray = {0, 1, 0, desc_.layers};
+    tempSrv_ = device_.CreateShaderResourceView(temp_.get(), &sd);
+    UNORDERED_ACCESS_VIEW_DESC ud;
+    ud.Format = format_;
+    ud.ViewDimension = UAV_DIMENSION_TEXTURE2DARRAY;
+    ud.Texture2DArray = {0, 0, desc_.layers};
+    tempUav_ = device_.CreateUnorderedAccessView(temp_.get(), &ud);
   }
-  if (blur) {
-    GpuTimer::Scope timed(timer, ctx, "blur");
-    if (!temp_) {
-      TEXTURE2D_DESC td;
-      td.Width = desc_.width;
-      td.Height = desc_.height;
-      td.ArraySize = desc_.layers;
-      td.Format = format_;
-      td.BindFlags = BIND_SHADER_RESOURCE | BIND_UNORDERED_ACCESS;
-      temp_ = device_.CreateTexture2D(td);
-      temp_->SetDebugName("moments blur temp");
-      SHADER_RESOURCE_VIEW_DESC sd;
-      sd.Format = format_;
-      sd.ViewDimension = SRV_DIMENSION_TEXTURE2DARRAY;  // also for one layer: the shader declares an array
-      sd.Texture2DArray = {0, 1, 0, desc_.layers};
-      tempSrv_ = device_.CreateShaderResourceView(temp_.get(), &sd);
-      UNORDERED_ACCESS_VIEW_DESC ud;
-      ud.Format = format_;
-      ud.ViewDimension = UAV_DIMENSION_TEXTURE2DARRAY;
-      ud.Texture2DArray = {0, 0, desc_.layers};
-      tempUav_ = device_.CreateUnorderedAccessView(temp_.get(), &ud);
-    }
-    BlurConstants bc{};
-    bc.width = desc_.width;
-    bc.height = desc_.height;
-    bc.layers = desc_.layers;
-    for (uint32_t i = 0; i < desc_.layers; ++i) bc.radius[i] = std::clamp(radii[i], 0.0f, kMaxBlurRadiusTexels);
-    ctx.CSSetConstantBuffers(0, {blurConstants_.get()});
-    // One buffer updated between the dispatches: each dispatch sees the contents at its time.
-    bc.dirX = 1;
+  BlurConstants bc{};
+  bc.width = desc_.width;
+  bc.height = desc_.height;
+  bc.layers = desc_.layers;
+  for (uint32_t i = 0; i < radii.size() && i < desc_.layers; ++i) bc.radius[i] = std::clamp(radii[i], 0.0f, kMaxBlurRadiusTexels);
+  ctx.CSSetConstantBuffers(0, {blurConstants_.get()});
+  // One buffer updated between the dispatches: each dispatch sees the contents at its time. The
+  // whole-buffer update replaces the GPU radii too, so they are copied in again after each one.
+  auto upload = [&] {
     ctx.UpdateSubresource(blurConstants_.get(), 0, nullptr, &bc, 0, 0);
-    Dispatch(ctx, blur_.get(), srvTop_.get(), tempUav_.get());
-    bc.dirX = 0;
-    bc.dirY = 1;
-    ctx.UpdateSubresource(blurConstants_.get(), 0, nullptr, &bc, 0, 0);
-    Dispatch(ctx, blur_.get(), tempSrv_.get(), uavTop_.get());
-  }
+    if (!gpu) return;
+    BOX box{gpu->offset, 0, 0, gpu->offset + kMomentBlurRadiiBytes, 1, 1};
+    ctx.CopySubresourceRegion(blurConstants_.get(), 0, uint32_t(offsetof(BlurConstants, radius)), 0, 0, gpu->buffer, 0, &box);
+  };
+  bc.dirX = 1;
+  upload();
+  Dispatch(ctx, blur_.get(), srvTop_.get(), tempUav_.get());
+  bc.dirX = 0;
+  bc.dirY = 1;
+  upload();
+  Dispatch(ctx, blur_.get(), tempSrv_.get(), uavTop_.get());
+}
+
+void MomentMaps::FinishMips(DeviceContext& ctx, GpuTimer* timer) {
   if (desc_.mips) {
     GpuTimer::Scope timed(timer, ctx, "moments");
     ctx.GenerateMips(srv_.get());
   }
   ctx.CSSetShader(nullptr);
+}
+
+std::vector<float> MomentMaps::ReadLastBlurRadii(DeviceContext& ctx) const {
+  if (!blurred_) return {};
+  BUFFER_DESC d;
+  d.ByteWidth = sizeof(BlurConstants);
+  d.Usage = USAGE_STAGING;
+  d.CPUAccessFlags = CPU_ACCESS_READ;
+  Ref<Buffer> staging = device_.CreateBuffer(d);
+  ctx.CopyResource(staging.get(), blurConstants_.get());
+  MAPPED_SUBRESOURCE m;
+  ctx.Map(staging.get(), 0, MAP_READ, 0, &m);
+  BlurConstants bc;
+  std::memcpy(&bc, m.pData, sizeof(bc));
+  ctx.Unmap(staging.get(), 0);
+  return std::vector<float>(bc.radius, bc.radius + desc_.layers);
 }
 
 uint64_t MomentMaps::MemoryBytes() const {

@@ -14,9 +14,10 @@
 //
 // Use, per frame: render depth into a texture made from DepthDesc() (one DSV per slice), unbind
 // Srv() from the lit pass's slots (Convert writes the map through a UAV), Convert(ctx,
-// MakeDepthSrv(depth), radii) with radii from BlurRadiusTexels(), then bind Srv() and Sampler()
-// for lighting, compiled with LightingDefines(), and call MomentSampleVisibility() from
-// moments.hlsli with the receiver's depth in the same [0, 1] space.
+// MakeDepthSrv(depth), radii) with radii from BlurRadiusTexels() (or ConvertWithGpuRadii where
+// only the GPU knows the layers' sizes), then bind Srv() and Sampler() for lighting, compiled
+// with LightingDefines(), and call MomentSampleVisibility() from moments.hlsli with the
+// receiver's depth in the same [0, 1] space.
 #pragma once
 #include <glm/glm.hpp>
 #include <map>
@@ -41,6 +42,8 @@ constexpr float kEsmMaxExponentFp16 = 11.08f, kEsmMaxExponentFp32 = 88.72f;
 constexpr float kMaxBlurRadiusTexels = 32.0f;
 // Layers whose blur radius the blur cbuffer holds.
 constexpr uint32_t kMaxMomentLayers = 16;
+// The blur cbuffer's radius block: one float (texels) per layer, layer i at byte 4 i.
+constexpr uint32_t kMomentBlurRadiiBytes = kMaxMomentLayers * 4;
 
 glm::vec2 ClampEvsmExponents(glm::vec2 requested, bool fp16);
 float ClampEsmExponent(float requested, bool fp16);
@@ -87,6 +90,14 @@ FORMAT MomentFormat(MomentKind kind, MomentPrecision precision);
 // texels, clamped to [0, kMaxBlurRadiusTexels].
 float BlurRadiusTexels(float worldRadius, float layerWorldWidth, uint32_t layerTexels);
 
+// Radii a GPU pass wrote, for a technique whose layer sizes only the GPU knows: the
+// kMomentBlurRadiiBytes at `offset` of `buffer` in the blur cbuffer's radius layout, each already
+// in [0, kMaxBlurRadiusTexels] (the blur shader clamps to its loop bound again).
+struct GpuBlurRadii {
+  Buffer* buffer = nullptr;
+  uint32_t offset = 0;  // a multiple of 4
+};
+
 struct MomentMapDesc {
   MomentOptions options;
   uint32_t width = 0, height = 0, layers = 1;
@@ -112,6 +123,13 @@ class MomentMaps {
   // map is unbound from the compute stage. Timed as "moments" and "blur" when `timer` is set.
   void Convert(DeviceContext& ctx, ShaderResourceView* depthSrv, const std::vector<float>& blurRadiusTexelsPerLayer,
                GpuTimer* timer = nullptr);
+  // Convert with the radii copied from GPU memory into the blur's constants
+  // (CopySubresourceRegion, no CPU round trip). The CPU cannot tell whether every radius is 0, so
+  // the blur passes always run (a layer of radius 0 is copied through).
+  void ConvertWithGpuRadii(DeviceContext& ctx, ShaderResourceView* depthSrv, const GpuBlurRadii& radii, GpuTimer* timer = nullptr);
+  // The radii the last Convert's blur read, copied back from its constants (a stall: for tests);
+  // empty when it did not blur.
+  std::vector<float> ReadLastBlurRadii(DeviceContext& ctx) const;
 
   ShaderResourceView* Srv() const { return srv_.get(); }  // Texture2DArray, all mips
   Texture2D* Texture() const { return map_.get(); }
@@ -123,6 +141,11 @@ class MomentMaps {
 
  private:
   void Dispatch(DeviceContext& ctx, ComputeShader* cs, ShaderResourceView* in, UnorderedAccessView* out);
+  void CheckDepthSrv(ShaderResourceView* depthSrv) const;
+  void Resolve(DeviceContext& ctx, ShaderResourceView* depthSrv, GpuTimer* timer);
+  // Both blur directions; `gpu` set: its radii replace those of `radii` in the constants.
+  void Blur(DeviceContext& ctx, const std::vector<float>& radii, const GpuBlurRadii* gpu, GpuTimer* timer);
+  void FinishMips(DeviceContext& ctx, GpuTimer* timer);
 
   Device& device_;
   MomentMapDesc desc_;
@@ -133,6 +156,7 @@ class MomentMaps {
   Ref<ComputeShader> resolve_, blur_;
   Ref<Buffer> resolveConstants_, blurConstants_;
   Ref<SamplerState> sampler_;
+  bool blurred_ = false;  // the last Convert ran the blur
 };
 
 }  // namespace sp::tech

@@ -156,6 +156,13 @@ std::vector<PartitionFit> DecodeFitBuffer(const std::vector<uint32_t>& words, ui
   return fits;
 }
 
+std::vector<float> DecodeFitBlurRadii(const std::vector<uint32_t>& words, uint32_t partitions) {
+  std::vector<float> radii;
+  if (words.size() < kFitBytes / 4) return radii;
+  for (uint32_t p = 0; p < partitions && p < kMaxPartitions; ++p) radii.push_back(FromBits(words[kFitBlurOffset / 4 + p]));
+  return radii;
+}
+
 std::vector<uint8_t> RenderLightSpaceImage(const std::vector<glm::vec3>& samples, const std::vector<PartitionFit>& fits, uint32_t w,
                                            uint32_t h) {
   static const uint8_t kPalette[8][3] = {{228, 26, 28},  {55, 126, 184}, {77, 175, 74},  {152, 78, 163},

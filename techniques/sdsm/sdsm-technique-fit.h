@@ -23,8 +23,10 @@
 namespace sp::tech::sdsm {
 
 // The fit buffer of cull=gpu (fit.hlsl): fitted boxes in the results layout for CasterCuller,
-// the CsmShadow constants, and each partition's world -> clip matrix as four rows.
-constexpr uint32_t kFitConstantsOffset = 384, kFitMatricesOffset = 1008, kFitBytes = 1520;
+// the CsmShadow constants, each partition's world -> clip matrix as four rows, and the moment
+// blur's radius per layer (texels, one float each, kMaxMomentLayers of them: the radius block of
+// MomentMaps' blur constants, which ConvertWithGpuRadii copies from here).
+constexpr uint32_t kFitConstantsOffset = 384, kFitMatricesOffset = 1008, kFitBlurOffset = 1520, kFitBytes = 1584;
 
 // cbuffer CsmShadow of shaders-hlsl/csm/shadow.hlsli (D3D packing).
 struct CsmShadowConstants {
@@ -39,6 +41,7 @@ struct CsmShadowConstants {
 };
 static_assert(sizeof(CsmShadowConstants) == 624);
 static_assert(kFitMatricesOffset - kFitConstantsOffset == sizeof(CsmShadowConstants));
+static_assert(kFitBlurOffset - kFitMatricesOffset == kMaxPartitions * 64);
 
 struct FitParams {
   uint32_t resolution = 1024;
@@ -87,6 +90,8 @@ CsmShadowConstants MakeConstants(const std::vector<PartitionFit>& fits, const gl
 
 // The fits a fit buffer holds (kFitBytes / 4 words), K partitions.
 std::vector<PartitionFit> DecodeFitBuffer(const std::vector<uint32_t>& words, uint32_t partitions);
+// The blur radii (texels) a fit buffer holds for K partitions.
+std::vector<float> DecodeFitBlurRadii(const std::vector<uint32_t>& words, uint32_t partitions);
 
 // The paper's Figure 4: the analysed samples in light space (x right, y up; z of each sample =
 // its partition) as dots tinted by partition, with each partition's fitted box outlined in its

@@ -19,6 +19,8 @@ struct FitConstants {
   glm::vec4 blur;
 };
 static_assert(sizeof(FitConstants) == 224);
+static_assert(kFitBytes - kFitBlurOffset == kMomentBlurRadiiBytes);
+static_assert(kMaxPartitions <= kMaxMomentLayers);
 
 Ref<Buffer> ConstantBuffer(Device& device, uint32_t bytes, const char* name) {
   BUFFER_DESC d;
@@ -112,7 +114,7 @@ void SdsmTechnique::Configure(Device& device, const ParamValues& params) {
     bd.BindFlags = BIND_UNORDERED_ACCESS | BIND_SHADER_RESOURCE;
     bd.MiscFlags = RESOURCE_MISC_BUFFER_ALLOW_RAW_VIEWS;
     fitBuffer_ = device.CreateBuffer(bd);
-    fitBuffer_->SetDebugName("sdsm fit (bounds, CsmShadow, matrices)");
+    fitBuffer_->SetDebugName("sdsm fit (bounds, CsmShadow, matrices, blur radii)");
     UNORDERED_ACCESS_VIEW_DESC ud;
     ud.Format = FORMAT_R32_TYPELESS;
     ud.ViewDimension = UAV_DIMENSION_BUFFER;
@@ -292,7 +294,7 @@ void SdsmTechnique::RunGpuFit(DeviceContext& ctx, const FrameInputs& frame) {
     c.cameraForward = glm::vec4(frame.camera.forward(), float(k_));
     c.settings = LightingSettings();
     c.params = glm::vec4(float(n_), float(fp.padTexels), fp.dilation, settings_.tight ? 1.0f : 0.0f);
-    c.blur = glm::vec4(fp.blurWorld, float(fp.blurMaxTexels), 0.0f, 0.0f);
+    c.blur = glm::vec4(fp.blurWorld, float(fp.blurMaxTexels), kMaxBlurRadiusTexels, 0.0f);
     ctx.UpdateSubresource(fitConstants_.get(), 0, nullptr, &c, 0, 0);
     ctx.VSSetShaderResources(2, {nullptr});  // last frame's draws read the matrices there
     ctx.CSSetConstantBuffers(0, {fitConstants_.get()});
@@ -356,11 +358,21 @@ void SdsmTechnique::DrawGpu(DeviceContext& ctx, const FrameInputs& frame) {
 void SdsmTechnique::ConvertMoments(DeviceContext& ctx, const FrameInputs& frame) {
   if (!moments_) return;
   ctx.OMSetRenderTargets(0, nullptr, nullptr);
-  // cull=gpu: the partitions' sizes are on the GPU; the conservative slices stand in for them.
-  const std::vector<PartitionFit>& fits = settings_.cull == CullMode::Gpu ? ConservativeFits(frame, lightView_) : fits_;
+  if (settings_.cull == CullMode::Gpu) {
+    // Only the GPU knows the partitions' sizes: fit.hlsl turned the world radius into each one's
+    // texels next to its padding, and the blur reads them from there.
+    blurRadii_.clear();
+    if (settings_.csm.moment.blur > 0.0f) {
+      moments_->ConvertWithGpuRadii(ctx, depthSrvForMoments_.get(), GpuBlurRadii{fitBuffer_.get(), kFitBlurOffset}, frame.timer);
+    } else {
+      moments_->Convert(ctx, depthSrvForMoments_.get(), blurRadii_, frame.timer);
+    }
+    return;
+  }
+  blurRadii_.assign(k_, 0.0f);
   const float base = float(settings_.csm.fit.padTexels);
   for (uint32_t p = 0; p < k_; ++p) {
-    const PartitionFit& f = fits[p];
+    const PartitionFit& f = fits_[p];
     blurRadii_[p] = f.empty ? 0.0f : std::min(BlurRadiusTexels(settings_.csm.moment.blur, f.texelWorld * float(n_), n_), f.padTexels - base);
   }
   moments_->Convert(ctx, depthSrvForMoments_.get(), blurRadii_, frame.timer);
@@ -429,6 +441,11 @@ std::vector<ShadowLayer> SdsmTechnique::Layers() const { return std::vector<Shad
 std::vector<PartitionFit> SdsmTechnique::ReadGpuFits(DeviceContext& ctx) {
   if (!fitBuffer_) return {};
   return DecodeFitBuffer(ReadBufferWords(ctx, fitBuffer_.get()), k_);
+}
+
+std::vector<float> SdsmTechnique::ReadGpuBlurRadii(DeviceContext& ctx) {
+  if (!fitBuffer_) return {};
+  return DecodeFitBlurRadii(ReadBufferWords(ctx, fitBuffer_.get()), k_);
 }
 
 SdsmDebugFrame SdsmTechnique::ReadDebugFrame(DeviceContext& ctx) {

@@ -24,9 +24,10 @@
 //                casters of each partition on the GPU and VSCasterGpu draws them indirectly with
 //                the matrix read from the fit buffer.
 //
-// Moment filters (filter=vsm|...) work as in csm (MomentMaps over the partition array); with
-// cull=gpu the CPU does not know the partitions' sizes, so the blur radius in texels is taken from
-// the conservative slice of each partition (less blur, in world units, than asked).
+// Moment filters (filter=vsm|...) work as in csm (MomentMaps over the partition array): the blur
+// radius is in world units, each partition blurs it in its own texels within the padding its fit
+// reserved. With cull=gpu only the GPU knows the partitions' sizes, so fit.hlsl writes the radii
+// too and MomentMaps copies them into the blur's constants; every mode blurs the same distance.
 #pragma once
 #include <memory>
 
@@ -89,6 +90,11 @@ class SdsmTechnique final : public Technique {
   uint64_t statsReadbacks() const { return statsReadbacks_; }
   // cull=gpu: the fits the GPU made last frame (reads the fit buffer back).
   std::vector<PartitionFit> ReadGpuFits(DeviceContext& ctx);
+  // Moment blur radii (texels, one per partition) of the last frame: the CPU's (empty with
+  // cull=gpu), and those fit.hlsl wrote with cull=gpu (reads the fit buffer back).
+  const std::vector<float>& lastBlurRadii() const { return blurRadii_; }
+  std::vector<float> ReadGpuBlurRadii(DeviceContext& ctx);
+  MomentMaps* moments() const { return moments_.get(); }
   // The analysis of the last frame (not with cull=conservative), for Figures 2 and 4.
   SdsmDebugFrame ReadDebugFrame(DeviceContext& ctx);
   Texture2D* shadowTexture() const { return map_.get(); }

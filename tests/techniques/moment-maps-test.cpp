@@ -487,6 +487,39 @@ TEST_P(MomentMapsTest, ConvertTimesItsPassesAndRejectsBadInputs) {
   EXPECT_EQ(maps->MemoryBytes(), uint64_t((64 + 16 + 4 + 1) * 2 * 16 + 64 * 2 * 16));
 }
 
+// Radii a GPU pass left in a buffer (here: written at creation, between unrelated words) blur
+// exactly as the same radii given on the CPU, including a layer of radius 0 (copied through);
+// the blur's constants hold them afterwards; bad regions are errors.
+TEST_P(MomentMapsTest, RadiiFromAGpuBufferBlurAsTheSameRadiiFromTheCpu) {
+  const uint32_t W = 16, H = 16, L = 3;
+  std::vector<float> src(W * H * L);
+  for (uint32_t i = 0; i < src.size(); ++i) src[i] = 0.2f + 0.6f * float((i * 2654435761u) % 997u) / 997.0f;
+  Ref<Texture2D> source = Source(W, H, L, src);
+  const std::vector<float> radii = {2.5f, 0.0f, 1.25f};
+  const uint32_t offset = 48;
+  std::vector<float> words(offset / 4 + tech::kMaxMomentLayers + 4, 99.0f);
+  for (uint32_t l = 0; l < tech::kMaxMomentLayers; ++l) words[offset / 4 + l] = l < L ? radii[l] : 0.0f;
+  Ref<Buffer> buffer = MakeBuffer(device(), BIND_SHADER_RESOURCE, words.data(), uint32_t(words.size() * 4));
+  Ref<ShaderResourceView> srv = MomentMaps::MakeDepthSrv(device(), source.get());
+  auto cpu = Make(Options("evsm4"), W, H, L), gpu = Make(Options("evsm4"), W, H, L);
+  cpu->Convert(ctx(), srv.get(), radii);
+  gpu->ConvertWithGpuRadii(ctx(), srv.get(), tech::GpuBlurRadii{buffer.get(), offset});
+  EXPECT_EQ(gpu->ReadLastBlurRadii(ctx()), radii);
+  EXPECT_EQ(cpu->ReadLastBlurRadii(ctx()), radii);
+  for (uint32_t l = 0; l < L; ++l) {
+    Texels a = Read(*cpu, l), b = Read(*gpu, l);
+    size_t differ = 0;
+    for (size_t i = 0; i < a.size(); ++i) differ += a[i] != b[i];
+    EXPECT_EQ(differ, 0u) << "layer " << l;
+  }
+  cpu->Convert(ctx(), srv.get(), {});
+  EXPECT_TRUE(cpu->ReadLastBlurRadii(ctx()).empty());
+  const uint32_t bytes = uint32_t(words.size() * 4);
+  EXPECT_THROW(gpu->ConvertWithGpuRadii(ctx(), srv.get(), tech::GpuBlurRadii{}), std::invalid_argument) << "null buffer";
+  EXPECT_THROW(gpu->ConvertWithGpuRadii(ctx(), srv.get(), tech::GpuBlurRadii{buffer.get(), 2}), std::invalid_argument) << "unaligned";
+  EXPECT_THROW(gpu->ConvertWithGpuRadii(ctx(), srv.get(), tech::GpuBlurRadii{buffer.get(), bytes - 32}), std::invalid_argument) << "past the end";
+}
+
 SP_INSTANTIATE_BACKEND_TESTS(MomentMapsTest);
 
 }  // namespace
