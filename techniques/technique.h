@@ -91,9 +91,28 @@ class SceneDrawer {
   Ref<InputLayout> depthLayout_;
 };
 
+// --- Resources every technique makes the same way (technique-resources.cpp)
+
+// A depth map rendered as D32_FLOAT and read as R32_FLOAT (an R32_TYPELESS texture).
+struct DepthMap {
+  Ref<Texture2D> texture;
+  Ref<DepthStencilView> dsv;
+  Ref<ShaderResourceView> srv;
+};
+DepthMap MakeDepthMap(Device& device, uint32_t width, uint32_t height, const char* name);
 // One D32_FLOAT depth-stencil view per array slice of a shadow-map array (R32_TYPELESS, single
 // or multisampled), for techniques that render one cascade or partition per slice.
 std::vector<Ref<DepthStencilView>> MakeSliceDepthViews(Device& device, Texture2D* texture);
+// The R32_FLOAT Texture2DArray view of every slice of such an array, for comparison lookups.
+Ref<ShaderResourceView> MakeSliceArraySrv(Device& device, Texture2D* texture);
+// The comparison sampler of the lighting includes: bilinear 2x2 PCF, LESS_EQUAL (receiver at or
+// in front of the stored depth is lit), BORDER addressing with depth 1 so outside the map is lit.
+Ref<SamplerState> MakeShadowComparisonSampler(Device& device);
+Ref<Buffer> MakeConstantBuffer(Device& device, uint32_t bytes, const char* name);
+// A buffer for raw (ByteAddressBuffer) views, and its whole-buffer raw views.
+Ref<Buffer> MakeRawBuffer(Device& device, uint32_t bytes, uint32_t bindFlags, const char* name, uint32_t extraMiscFlags = 0);
+Ref<UnorderedAccessView> MakeRawUav(Device& device, Buffer* buffer);
+Ref<ShaderResourceView> MakeRawSrv(Device& device, Buffer* buffer);
 
 // One layer of a technique's shadow maps as the lab's ShadowLocate() numbers them (a cascade, an
 // array slice, an atlas region): its size in texels. Layer i of Layers() is layer id i in HLSL.

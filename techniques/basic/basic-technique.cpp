@@ -24,21 +24,7 @@ class BasicTechnique final : public Technique {
 
   void Configure(Device& device, const ParamValues& p) override {
     resolution_ = uint32_t(p.getInt("resolution"));
-    TEXTURE2D_DESC td;
-    td.Width = td.Height = resolution_;
-    td.Format = FORMAT_R32_TYPELESS;
-    td.BindFlags = BIND_DEPTH_STENCIL | BIND_SHADER_RESOURCE;
-    map_ = device.CreateTexture2D(td);
-    map_->SetDebugName("basic shadow map");
-    DEPTH_STENCIL_VIEW_DESC dd;
-    dd.Format = FORMAT_D32_FLOAT;
-    dd.ViewDimension = DSV_DIMENSION_TEXTURE2D;
-    dsv_ = device.CreateDepthStencilView(map_.get(), &dd);
-    SHADER_RESOURCE_VIEW_DESC sd;
-    sd.Format = FORMAT_R32_FLOAT;
-    sd.ViewDimension = SRV_DIMENSION_TEXTURE2D;
-    sd.Texture2D = {0, 1};
-    srv_ = device.CreateShaderResourceView(map_.get(), &sd);
+    map_ = MakeDepthMap(device, resolution_, resolution_, "basic shadow map");
 
     RASTERIZER_DESC rd;
     rd.FrontCounterClockwise = true;  // glTF winding, as in the lit pass
@@ -49,18 +35,8 @@ class BasicTechnique final : public Technique {
     rd.DepthClipEnable = false;
     rasterizer_ = device.CreateRasterizerState(rd);
 
-    SAMPLER_DESC smp;
-    smp.Filter = FILTER_COMPARISON_MIN_MAG_LINEAR_MIP_POINT;
-    smp.AddressU = smp.AddressV = smp.AddressW = TEXTURE_ADDRESS_BORDER;
-    smp.ComparisonFunc = COMPARISON_LESS_EQUAL;
-    for (float& c : smp.BorderColor) c = 1.0f;  // outside the map: lit
-    sampler_ = device.CreateSamplerState(smp);
-
-    BUFFER_DESC cb;
-    cb.ByteWidth = sizeof(Constants);
-    cb.BindFlags = BIND_CONSTANT_BUFFER;
-    constants_ = device.CreateBuffer(cb);
-    constants_->SetDebugName("BasicShadow constants");
+    sampler_ = MakeShadowComparisonSampler(device);
+    constants_ = MakeConstantBuffer(device, sizeof(Constants), "BasicShadow constants");
   }
 
   void RenderShadows(DeviceContext& ctx, SceneDrawer& drawer, const FrameInputs& frame) override {
@@ -73,8 +49,8 @@ class BasicTechnique final : public Technique {
     // program does (the runtime would do it anyway, with a warning).
     ShaderResourceView* none = nullptr;
     ctx.PSSetShaderResources(0, 1, &none);
-    ctx.OMSetRenderTargets(0, nullptr, dsv_.get());
-    ctx.ClearDepthStencilView(dsv_.get(), CLEAR_DEPTH, 1.0f, 0);
+    ctx.OMSetRenderTargets(0, nullptr, map_.dsv.get());
+    ctx.ClearDepthStencilView(map_.dsv.get(), CLEAR_DEPTH, 1.0f, 0);
     VIEWPORT vp{0, 0, float(resolution_), float(resolution_), 0, 1};
     ctx.RSSetViewports(1, &vp);
     ctx.RSSetState(rasterizer_.get());
@@ -86,7 +62,7 @@ class BasicTechnique final : public Technique {
 
   void BindLighting(DeviceContext& ctx) override {
     ctx.PSSetConstantBuffers(2, {constants_.get()});
-    ctx.PSSetShaderResources(0, {srv_.get()});
+    ctx.PSSetShaderResources(0, {map_.srv.get()});
     ctx.PSSetSamplers(0, {sampler_.get()});
   }
 
@@ -116,9 +92,7 @@ class BasicTechnique final : public Technique {
   static_assert(sizeof(Constants) == 80);
 
   uint32_t resolution_ = 0;
-  Ref<Texture2D> map_;
-  Ref<DepthStencilView> dsv_;
-  Ref<ShaderResourceView> srv_;
+  DepthMap map_;
   Ref<RasterizerState> rasterizer_;
   Ref<SamplerState> sampler_;
   Ref<Buffer> constants_;

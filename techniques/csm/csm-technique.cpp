@@ -72,11 +72,7 @@ void CsmTechnique::Configure(Device& device, const ParamValues& params) {
     depthSrv_ = MomentMaps::MakeDepthSrv(device, map_.get());
     srv_ = nullptr;  // the lit pass reads the moments, not the depth
   } else {
-    SHADER_RESOURCE_VIEW_DESC sd;
-    sd.Format = FORMAT_R32_FLOAT;
-    sd.ViewDimension = SRV_DIMENSION_TEXTURE2DARRAY;
-    sd.Texture2DArray = {0, 1, 0, arraySize_};
-    srv_ = device.CreateShaderResourceView(map_.get(), &sd);
+    srv_ = MakeSliceArraySrv(device, map_.get());
   }
 
   RASTERIZER_DESC rd;
@@ -94,18 +90,8 @@ void CsmTechnique::Configure(Device& device, const ParamValues& params) {
   rd.DepthClipEnable = false;
   rasterizer_ = device.CreateRasterizerState(rd);
 
-  SAMPLER_DESC smp;
-  smp.Filter = FILTER_COMPARISON_MIN_MAG_LINEAR_MIP_POINT;
-  smp.AddressU = smp.AddressV = smp.AddressW = TEXTURE_ADDRESS_BORDER;
-  smp.ComparisonFunc = COMPARISON_LESS_EQUAL;
-  for (float& c : smp.BorderColor) c = 1.0f;  // outside the texture: lit
-  sampler_ = device.CreateSamplerState(smp);
-
-  BUFFER_DESC cb;
-  cb.ByteWidth = sizeof(Constants);
-  cb.BindFlags = BIND_CONSTANT_BUFFER;
-  constants_ = device.CreateBuffer(cb);
-  constants_->SetDebugName("CsmShadow constants");
+  sampler_ = MakeShadowComparisonSampler(device);
+  constants_ = MakeConstantBuffer(device, sizeof(Constants), "CsmShadow constants");
   cascadeTriangles_.assign(cascades, 0);
 }
 

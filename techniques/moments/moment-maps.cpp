@@ -27,15 +27,6 @@ struct BlurConstants {
 static_assert(sizeof(BlurConstants) == 96);
 static_assert(sizeof(BlurConstants::radius) == kMomentBlurRadiiBytes);
 
-Ref<Buffer> ConstantBuffer(Device& device, uint32_t size, const char* name) {
-  BUFFER_DESC d;
-  d.ByteWidth = size;
-  d.BindFlags = BIND_CONSTANT_BUFFER;
-  Ref<Buffer> b = device.CreateBuffer(d);
-  b->SetDebugName(name);
-  return b;
-}
-
 uint32_t MipCount(uint32_t w, uint32_t h) {
   uint32_t n = 1;
   while ((w | h) > 1) {
@@ -86,8 +77,8 @@ MomentMaps::MomentMaps(Device& device, const MomentMapDesc& desc) : device_(devi
   resolve_ = device.CreateComputeShader(CompileTechniqueShader("moments/resolve.hlsl", "cs_5_0", "main", defines));
   blur_ = device.CreateComputeShader(CompileTechniqueShader("moments/blur.hlsl", "cs_5_0", "main",
                                                             {{"MOMENT_BLUR_KERNEL", std::to_string(int(desc.options.blurKernel))}}));
-  resolveConstants_ = ConstantBuffer(device, sizeof(ResolveConstants), "MomentResolve constants");
-  blurConstants_ = ConstantBuffer(device, sizeof(BlurConstants), "MomentBlur constants");
+  resolveConstants_ = MakeConstantBuffer(device, sizeof(ResolveConstants), "MomentResolve constants");
+  blurConstants_ = MakeConstantBuffer(device, sizeof(BlurConstants), "MomentBlur constants");
 
   // Moments are filtered like colour: an ordinary sampler, trilinear or anisotropic. Clamp, not
   // border: lookups outside the map are the technique's business (cascade selection), and a

@@ -106,23 +106,10 @@ CasterCuller::CasterCuller(Device& device, const scene::GpuScene& scene) : scene
   visibleSrv_ = device.CreateShaderResourceView(visible_.get());
   visibleUav_ = device.CreateUnorderedAccessView(visible_.get());
 
-  BUFFER_DESC ad;
-  ad.ByteWidth = nb * kMaxPartitions * kArgsStride;
-  ad.BindFlags = BIND_UNORDERED_ACCESS;
-  ad.MiscFlags = RESOURCE_MISC_DRAWINDIRECT_ARGS | RESOURCE_MISC_BUFFER_ALLOW_RAW_VIEWS;
-  args_ = device.CreateBuffer(ad);
-  args_->SetDebugName("sdsm caster draw args");
-  UNORDERED_ACCESS_VIEW_DESC ud;
-  ud.Format = FORMAT_R32_TYPELESS;
-  ud.ViewDimension = UAV_DIMENSION_BUFFER;
-  ud.Buffer = {0, ad.ByteWidth / 4, BUFFER_UAV_FLAG_RAW};
-  argsUav_ = device.CreateUnorderedAccessView(args_.get(), &ud);
-
-  BUFFER_DESC cb;
-  cb.ByteWidth = sizeof(CullConstants);
-  cb.BindFlags = BIND_CONSTANT_BUFFER;
-  cullConstants_ = device.CreateBuffer(cb);
-  cullConstants_->SetDebugName("SdsmCull constants");
+  args_ = MakeRawBuffer(device, nb * kMaxPartitions * kArgsStride, BIND_UNORDERED_ACCESS, "sdsm caster draw args",
+                        RESOURCE_MISC_DRAWINDIRECT_ARGS);
+  argsUav_ = MakeRawUav(device, args_.get());
+  cullConstants_ = MakeConstantBuffer(device, sizeof(CullConstants), "SdsmCull constants");
   BUFFER_DESC db;
   db.ByteWidth = sizeof(DrawConstants);
   db.Usage = USAGE_DYNAMIC;

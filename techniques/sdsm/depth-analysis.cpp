@@ -31,24 +31,6 @@ static_assert(sizeof(AnalysisConstants) == 128);
 
 uint32_t DivUp(uint32_t a, uint32_t b) { return (a + b - 1) / b; }
 
-Ref<Buffer> RawBuffer(Device& device, uint32_t bytes, uint32_t bind, const char* name) {
-  BUFFER_DESC d;
-  d.ByteWidth = bytes;
-  d.BindFlags = bind;
-  d.MiscFlags = RESOURCE_MISC_BUFFER_ALLOW_RAW_VIEWS;
-  Ref<Buffer> b = device.CreateBuffer(d);
-  b->SetDebugName(name);
-  return b;
-}
-
-Ref<UnorderedAccessView> RawUav(Device& device, Buffer* b) {
-  UNORDERED_ACCESS_VIEW_DESC d;
-  d.Format = FORMAT_R32_TYPELESS;
-  d.ViewDimension = UAV_DIMENSION_BUFFER;
-  d.Buffer = {0, b->GetDesc().ByteWidth / 4, BUFFER_UAV_FLAG_RAW};
-  return device.CreateUnorderedAccessView(b, &d);
-}
-
 Ref<Buffer> StructuredBuffer(Device& device, uint32_t count, uint32_t stride, const char* name) {
   BUFFER_DESC d;
   d.ByteWidth = count * stride;
@@ -79,19 +61,11 @@ AnalysisTraffic EstimateTraffic(uint32_t width, uint32_t height, ReduceMode mode
 DepthAnalysis::DepthAnalysis(Device& device, uint32_t bins) : device_(device), bins_(bins) {
   if (bins == 0 || bins % 256 != 0 || bins > 1024)
     throw std::invalid_argument("DepthAnalysis: histogramBins must be a multiple of 256 in [256, 1024], got " + std::to_string(bins));
-  BUFFER_DESC cb;
-  cb.ByteWidth = sizeof(AnalysisConstants);
-  cb.BindFlags = BIND_CONSTANT_BUFFER;
-  constants_ = device.CreateBuffer(cb);
-  constants_->SetDebugName("SdsmAnalysis constants");
+  constants_ = MakeConstantBuffer(device, sizeof(AnalysisConstants), "SdsmAnalysis constants");
 
-  results_ = RawBuffer(device, kResultBytes, BIND_UNORDERED_ACCESS | BIND_SHADER_RESOURCE, "sdsm analysis results");
-  resultsUav_ = RawUav(device, results_.get());
-  SHADER_RESOURCE_VIEW_DESC sd;
-  sd.Format = FORMAT_R32_TYPELESS;
-  sd.ViewDimension = SRV_DIMENSION_BUFFEREX;
-  sd.BufferEx = {0, kResultWords, BUFFEREX_SRV_FLAG_RAW};
-  resultsSrv_ = device.CreateShaderResourceView(results_.get(), &sd);
+  results_ = MakeRawBuffer(device, kResultBytes, BIND_UNORDERED_ACCESS | BIND_SHADER_RESOURCE, "sdsm analysis results");
+  resultsUav_ = MakeRawUav(device, results_.get());
+  resultsSrv_ = MakeRawSrv(device, results_.get());
   histogram_ = StructuredBuffer(device, bins, 4, "sdsm depth histogram");
   histogramUav_ = device.CreateUnorderedAccessView(histogram_.get());
 

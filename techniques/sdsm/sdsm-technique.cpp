@@ -22,15 +22,6 @@ static_assert(sizeof(FitConstants) == 224);
 static_assert(kFitBytes - kFitBlurOffset == kMomentBlurRadiiBytes);
 static_assert(kMaxPartitions <= kMaxMomentLayers);
 
-Ref<Buffer> ConstantBuffer(Device& device, uint32_t bytes, const char* name) {
-  BUFFER_DESC d;
-  d.ByteWidth = bytes;
-  d.BindFlags = BIND_CONSTANT_BUFFER;
-  Ref<Buffer> b = device.CreateBuffer(d);
-  b->SetDebugName(name);
-  return b;
-}
-
 }  // namespace
 
 void SdsmTechnique::Configure(Device& device, const ParamValues& params) {
@@ -67,11 +58,7 @@ void SdsmTechnique::Configure(Device& device, const ParamValues& params) {
   if (cs.moments) {
     depthSrvForMoments_ = MomentMaps::MakeDepthSrv(device, map_.get());
   } else {
-    SHADER_RESOURCE_VIEW_DESC sd;
-    sd.Format = FORMAT_R32_FLOAT;
-    sd.ViewDimension = SRV_DIMENSION_TEXTURE2DARRAY;
-    sd.Texture2DArray = {0, 1, 0, k_};
-    srv_ = device.CreateShaderResourceView(map_.get(), &sd);
+    srv_ = MakeSliceArraySrv(device, map_.get());
   }
 
   // Shadow passes as csm's: bias for the comparison filters only, and depth clamping so casters
@@ -88,13 +75,8 @@ void SdsmTechnique::Configure(Device& device, const ParamValues& params) {
   pd.FrontCounterClockwise = true;  // the lit pass's state: the pre-pass must see the same surfaces
   prepassRasterizer_ = device.CreateRasterizerState(pd);
 
-  SAMPLER_DESC smp;
-  smp.Filter = FILTER_COMPARISON_MIN_MAG_LINEAR_MIP_POINT;
-  smp.AddressU = smp.AddressV = smp.AddressW = TEXTURE_ADDRESS_BORDER;
-  smp.ComparisonFunc = COMPARISON_LESS_EQUAL;
-  for (float& c : smp.BorderColor) c = 1.0f;
-  sampler_ = device.CreateSamplerState(smp);
-  constants_ = ConstantBuffer(device, sizeof(CsmShadowConstants), "sdsm CsmShadow constants");
+  sampler_ = MakeShadowComparisonSampler(device);
+  constants_ = MakeConstantBuffer(device, sizeof(CsmShadowConstants), "sdsm CsmShadow constants");
 
   analysis_.reset();
   readback_.reset();
@@ -109,23 +91,10 @@ void SdsmTechnique::Configure(Device& device, const ParamValues& params) {
   fitUav_ = nullptr;
   fitSrv_ = nullptr;
   if (settings_.cull == CullMode::Gpu) {
-    BUFFER_DESC bd;
-    bd.ByteWidth = kFitBytes;
-    bd.BindFlags = BIND_UNORDERED_ACCESS | BIND_SHADER_RESOURCE;
-    bd.MiscFlags = RESOURCE_MISC_BUFFER_ALLOW_RAW_VIEWS;
-    fitBuffer_ = device.CreateBuffer(bd);
-    fitBuffer_->SetDebugName("sdsm fit (bounds, CsmShadow, matrices, blur radii)");
-    UNORDERED_ACCESS_VIEW_DESC ud;
-    ud.Format = FORMAT_R32_TYPELESS;
-    ud.ViewDimension = UAV_DIMENSION_BUFFER;
-    ud.Buffer = {0, kFitBytes / 4, BUFFER_UAV_FLAG_RAW};
-    fitUav_ = device.CreateUnorderedAccessView(fitBuffer_.get(), &ud);
-    SHADER_RESOURCE_VIEW_DESC sd;
-    sd.Format = FORMAT_R32_TYPELESS;
-    sd.ViewDimension = SRV_DIMENSION_BUFFEREX;
-    sd.BufferEx = {0, kFitBytes / 4, BUFFEREX_SRV_FLAG_RAW};
-    fitSrv_ = device.CreateShaderResourceView(fitBuffer_.get(), &sd);
-    fitConstants_ = ConstantBuffer(device, sizeof(FitConstants), "SdsmFit constants");
+    fitBuffer_ = MakeRawBuffer(device, kFitBytes, BIND_UNORDERED_ACCESS | BIND_SHADER_RESOURCE, "sdsm fit (bounds, CsmShadow, matrices, blur radii)");
+    fitUav_ = MakeRawUav(device, fitBuffer_.get());
+    fitSrv_ = MakeRawSrv(device, fitBuffer_.get());
+    fitConstants_ = MakeConstantBuffer(device, sizeof(FitConstants), "SdsmFit constants");
     fitCs_ = device.CreateComputeShader(CompileTechniqueShader("sdsm/fit.hlsl", "cs_5_0", "FitPartitions"));
   }
   partitionTriangles_.assign(k_, 0);
@@ -189,32 +158,17 @@ std::vector<PartitionFit> SdsmTechnique::FitsFrom(const AnalysisResults& r, cons
 }
 
 void SdsmTechnique::EnsureCameraDepth(Device& device, uint32_t w, uint32_t h) {
-  if (cameraDepth_ && depthWidth_ == w && depthHeight_ == h) return;
+  if (cameraDepth_.texture && depthWidth_ == w && depthHeight_ == h) return;
   depthWidth_ = w;
   depthHeight_ = h;
-  TEXTURE2D_DESC td;
-  td.Width = w;
-  td.Height = h;
-  td.Format = FORMAT_R32_TYPELESS;
-  td.BindFlags = BIND_DEPTH_STENCIL | BIND_SHADER_RESOURCE;
-  cameraDepth_ = device.CreateTexture2D(td);
-  cameraDepth_->SetDebugName("sdsm camera depth");
-  DEPTH_STENCIL_VIEW_DESC dd;
-  dd.Format = FORMAT_D32_FLOAT;
-  dd.ViewDimension = DSV_DIMENSION_TEXTURE2D;
-  cameraDsv_ = device.CreateDepthStencilView(cameraDepth_.get(), &dd);
-  SHADER_RESOURCE_VIEW_DESC sd;
-  sd.Format = FORMAT_R32_FLOAT;
-  sd.ViewDimension = SRV_DIMENSION_TEXTURE2D;
-  sd.Texture2D = {0, 1};
-  cameraSrv_ = device.CreateShaderResourceView(cameraDepth_.get(), &sd);
+  cameraDepth_ = MakeDepthMap(device, w, h, "sdsm camera depth");
 }
 
 void SdsmTechnique::DepthPrepass(DeviceContext& ctx, SceneDrawer& drawer, const FrameInputs& frame) {
   GpuTimer::Scope timed(frame.timer, ctx, "depth prepass");
   EnsureCameraDepth(*device_, frame.width, frame.height);
-  ctx.OMSetRenderTargets(0, nullptr, cameraDsv_.get());
-  ctx.ClearDepthStencilView(cameraDsv_.get(), CLEAR_DEPTH, 1.0f, 0);
+  ctx.OMSetRenderTargets(0, nullptr, cameraDepth_.dsv.get());
+  ctx.ClearDepthStencilView(cameraDepth_.dsv.get(), CLEAR_DEPTH, 1.0f, 0);
   ctx.OMSetDepthStencilState(nullptr, 0);
   VIEWPORT vp{0, 0, float(frame.width), float(frame.height), 0, 1};
   ctx.RSSetViewports(1, &vp);
@@ -238,7 +192,7 @@ void SdsmTechnique::RenderShadows(DeviceContext& ctx, SceneDrawer& drawer, const
     AnalysisSettings as;
     as.partitions.scheme = settings_.partition;
     as.partitions.count = k_;
-    analysis_->Run(ctx, cameraSrv_.get(), analysisFrame_, as, frame.timer);
+    analysis_->Run(ctx, cameraDepth_.srv.get(), analysisFrame_, as, frame.timer);
   }
 
   const CullMode mode = settings_.cull;
@@ -406,7 +360,7 @@ ShadowStats SdsmTechnique::Stats() const {
   s.memoryBytes = uint64_t(td.Width) * td.Height * td.ArraySize * td.SampleDesc.Count * 4;
   if (moments_) s.memoryBytes += moments_->MemoryBytes();
   s.memoryBytes += constants_->GetDesc().ByteWidth;
-  if (cameraDepth_) s.memoryBytes += uint64_t(depthWidth_) * depthHeight_ * 4;
+  if (cameraDepth_.texture) s.memoryBytes += uint64_t(depthWidth_) * depthHeight_ * 4;
   if (analysis_) {
     // Results, histogram and the two-pass reduction's tile buffer (8 bytes per 16x16 tile).
     uint64_t tiles = uint64_t((depthWidth_ + 15) / 16) * ((depthHeight_ + 15) / 16);
@@ -450,17 +404,17 @@ std::vector<float> SdsmTechnique::ReadGpuBlurRadii(DeviceContext& ctx) {
 
 SdsmDebugFrame SdsmTechnique::ReadDebugFrame(DeviceContext& ctx) {
   SdsmDebugFrame d;
-  if (!analysis_ || !cameraDepth_) return d;
+  if (!analysis_ || !cameraDepth_.texture) return d;
   std::vector<uint32_t> words = ReadBufferWords(ctx, analysis_->results());
   d.results = DecodeResults(words.data());
   d.histogram = ReadBufferWords(ctx, analysis_->histogram());
   d.fits = settings_.cull == CullMode::Gpu ? ReadGpuFits(ctx) : fits_;
-  TEXTURE2D_DESC sd = cameraDepth_->GetDesc();
+  TEXTURE2D_DESC sd = cameraDepth_.texture->GetDesc();
   sd.BindFlags = 0;
   sd.Usage = USAGE_STAGING;
   sd.CPUAccessFlags = CPU_ACCESS_READ;
   Ref<Texture2D> staging = device_->CreateTexture2D(sd);
-  ctx.CopyResource(staging.get(), cameraDepth_.get());
+  ctx.CopyResource(staging.get(), cameraDepth_.texture.get());
   MAPPED_SUBRESOURCE m;
   ctx.Map(staging.get(), 0, MAP_READ, 0, &m);
   for (uint32_t y = 0; y < depthHeight_; ++y) {

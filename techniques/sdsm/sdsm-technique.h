@@ -133,9 +133,7 @@ class SdsmTechnique final : public Technique {
 
   // Camera depth and the analysis.
   uint32_t depthWidth_ = 0, depthHeight_ = 0;
-  Ref<Texture2D> cameraDepth_;
-  Ref<DepthStencilView> cameraDsv_;
-  Ref<ShaderResourceView> cameraSrv_;
+  DepthMap cameraDepth_;
   std::unique_ptr<DepthAnalysis> analysis_;
   std::unique_ptr<AnalysisReadback> readback_;
   AnalysisFrame analysisFrame_;

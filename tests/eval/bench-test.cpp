@@ -25,36 +25,15 @@ class ViewFitTechnique final : public tech::Technique {
   }
   void Configure(Device& device, const tech::ParamValues& p) override {
     size_ = uint32_t(p.getInt("resolution"));
-    TEXTURE2D_DESC td;
-    td.Width = td.Height = size_;
-    td.Format = FORMAT_R32_TYPELESS;
-    td.BindFlags = BIND_DEPTH_STENCIL | BIND_SHADER_RESOURCE;
-    map_ = device.CreateTexture2D(td);
-    DEPTH_STENCIL_VIEW_DESC dd;
-    dd.Format = FORMAT_D32_FLOAT;
-    dd.ViewDimension = DSV_DIMENSION_TEXTURE2D;
-    dsv_ = device.CreateDepthStencilView(map_.get(), &dd);
-    SHADER_RESOURCE_VIEW_DESC sd;
-    sd.Format = FORMAT_R32_FLOAT;
-    sd.ViewDimension = SRV_DIMENSION_TEXTURE2D;
-    sd.Texture2D = {0, 1};
-    srv_ = device.CreateShaderResourceView(map_.get(), &sd);
+    map_ = tech::MakeDepthMap(device, size_, size_, "view-fitted shadow map");
     RASTERIZER_DESC rd;
     rd.FrontCounterClockwise = true;
     rd.DepthBias = 200;
     rd.SlopeScaledDepthBias = 2.0f;
     rd.DepthClipEnable = false;
     rasterizer_ = device.CreateRasterizerState(rd);
-    SAMPLER_DESC smp;
-    smp.Filter = FILTER_COMPARISON_MIN_MAG_LINEAR_MIP_POINT;
-    smp.AddressU = smp.AddressV = smp.AddressW = TEXTURE_ADDRESS_BORDER;
-    smp.ComparisonFunc = COMPARISON_LESS_EQUAL;
-    for (float& c : smp.BorderColor) c = 1.0f;
-    sampler_ = device.CreateSamplerState(smp);
-    BUFFER_DESC cb;
-    cb.ByteWidth = 80;
-    cb.BindFlags = BIND_CONSTANT_BUFFER;
-    constants_ = device.CreateBuffer(cb);
+    sampler_ = tech::MakeShadowComparisonSampler(device);
+    constants_ = tech::MakeConstantBuffer(device, 80, "view-fitted shadow constants");
   }
   void RenderShadows(DeviceContext& ctx, tech::SceneDrawer& drawer, const tech::FrameInputs& f) override {
     tech::GpuTimer::Scope timed(f.timer, ctx, "shadow");
@@ -71,8 +50,8 @@ class ViewFitTechnique final : public tech::Technique {
     ctx.UpdateSubresource(constants_.get(), 0, nullptr, &c, 0, 0);
     ShaderResourceView* none = nullptr;
     ctx.PSSetShaderResources(0, 1, &none);
-    ctx.OMSetRenderTargets(0, nullptr, dsv_.get());
-    ctx.ClearDepthStencilView(dsv_.get(), CLEAR_DEPTH, 1.0f, 0);
+    ctx.OMSetRenderTargets(0, nullptr, map_.dsv.get());
+    ctx.ClearDepthStencilView(map_.dsv.get(), CLEAR_DEPTH, 1.0f, 0);
     VIEWPORT vp{0, 0, float(size_), float(size_), 0, 1};
     ctx.RSSetViewports(1, &vp);
     ctx.RSSetState(rasterizer_.get());
@@ -82,7 +61,7 @@ class ViewFitTechnique final : public tech::Technique {
   std::string LightingInclude() const override { return "basic/shadow.hlsli"; }
   void BindLighting(DeviceContext& ctx) override {
     ctx.PSSetConstantBuffers(2, {constants_.get()});
-    ctx.PSSetShaderResources(0, {srv_.get()});
+    ctx.PSSetShaderResources(0, {map_.srv.get()});
     ctx.PSSetSamplers(0, {sampler_.get()});
   }
   tech::ShadowStats Stats() const override { return {uint64_t(size_) * size_ * 4, triangles_}; }
@@ -90,9 +69,7 @@ class ViewFitTechnique final : public tech::Technique {
 
  private:
   uint32_t size_ = 0;
-  Ref<Texture2D> map_;
-  Ref<DepthStencilView> dsv_;
-  Ref<ShaderResourceView> srv_;
+  tech::DepthMap map_;
   Ref<RasterizerState> rasterizer_;
   Ref<SamplerState> sampler_;
   Ref<Buffer> constants_;
