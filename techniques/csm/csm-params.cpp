@@ -45,7 +45,8 @@ std::vector<ParamSpec> CsmParams() {
   return specs;
 }
 
-CsmSettings SettingsFrom(const ParamValues& p) {
+CsmSettings SettingsFrom(const ParamValues& p, const std::string& technique) {
+  const std::string prefix = "technique '" + technique + "': ";
   CsmSettings s;
   FitSettings& f = s.fit;
   f.cascades = p.getInt("cascades");
@@ -56,10 +57,10 @@ CsmSettings SettingsFrom(const ParamValues& p) {
     try {
       f.manualFractions = ParseManualSplits(splits, f.cascades);
     } catch (const std::invalid_argument& e) {
-      throw std::invalid_argument(std::string("technique 'csm': ") + e.what());
+      throw std::invalid_argument(prefix + e.what());
     }
   } else if (!splits.empty()) {
-    throw std::invalid_argument("technique 'csm': splits=" + splits + " is only used with split=manual (split is " + p.getChoice("split") + ")");
+    throw std::invalid_argument(prefix + "splits=" + splits + " is only used with split=manual (split is " + p.getChoice("split") + ")");
   }
   f.fitToScene = p.getChoice("fit") == "scene";
   f.focusReceivers = p.getChoice("focus") == "receivers";
@@ -84,11 +85,11 @@ CsmSettings SettingsFrom(const ParamValues& p) {
     try {
       s.moment = ParseMomentOptions(values);
     } catch (const std::invalid_argument& e) {
-      throw std::invalid_argument(std::string("technique 'csm': ") + e.what());
+      throw std::invalid_argument(prefix + e.what());
     }
   }
   if (s.moments && s.storage == Storage::Atlas)
-    throw std::invalid_argument("technique 'csm': filter=" + filter +
+    throw std::invalid_argument(prefix + "filter=" + filter +
                                 " needs storage=array: the moment blur and mip chain of an atlas would mix neighbouring cascades' regions");
   const std::string& bias = p.getChoice("bias");
   s.bias = bias == "const" ? Bias::Const : bias == "normal" ? Bias::Normal : bias == "receiver-plane" ? Bias::ReceiverPlane : Bias::Slope;
@@ -104,7 +105,7 @@ CsmSettings SettingsFrom(const ParamValues& p) {
   if (s.bias == Bias::Normal) reach += uint32_t(std::ceil(s.normalOffset));
   f.padTexels = reach;
   if (f.resolution < 8 * f.padTexels)
-    throw std::invalid_argument("technique 'csm': resolution=" + std::to_string(f.resolution) + " is too small for the filter's padding of " +
+    throw std::invalid_argument(prefix + "resolution=" + std::to_string(f.resolution) + " is too small for the filter's padding of " +
                                 std::to_string(f.padTexels) + " texels; use at least " + std::to_string(8 * f.padTexels));
   if (s.moments) {
     // The moment blur reaches `blur` world units, a different number of texels per cascade: the

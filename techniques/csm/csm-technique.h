@@ -57,7 +57,8 @@ struct CsmSettings {
 std::vector<ParamSpec> CsmParams();
 // Throws std::invalid_argument for what ParamValues::Parse cannot check (the manual split list,
 // the moment parameters' values, moment filters with storage=atlas).
-CsmSettings SettingsFrom(const ParamValues& params);
+// `technique` names the caller in error messages (sdsm shares these parameters).
+CsmSettings SettingsFrom(const ParamValues& params, const std::string& technique = "csm");
 
 // Where a cascade lives in the shadow texture.
 struct CascadeRegion {

@@ -14,13 +14,6 @@ namespace {
 const char* const kSharedCsmParams[] = {"cascades", "resolution", "blend", "filter", "kernel", "bias", "depth_bias",
                                         "slope_bias", "normal_offset", "msaa", "blur", "bleed", "exponents", "precision", "anisotropy"};
 
-std::string Rename(const std::string& message) {
-  const std::string from = "technique 'csm'";
-  std::string m = message;
-  for (size_t at = m.find(from); at != std::string::npos; at = m.find(from, at)) m.replace(at, from.size(), "technique 'sdsm'");
-  return m;
-}
-
 }  // namespace
 
 std::vector<ParamSpec> SdsmParams() {
@@ -54,11 +47,7 @@ SdsmSettings SdsmSettingsFrom(const ParamValues& p) {
   std::map<std::string, std::string> shared;
   for (const char* name : kSharedCsmParams)
     if (p.all().count(name)) shared[name] = p.all().at(name);
-  try {
-    s.csm = csm::SettingsFrom(ParamValues::Parse("csm", csm::CsmParams(), shared));
-  } catch (const std::invalid_argument& e) {
-    throw std::invalid_argument(Rename(e.what()));
-  }
+  s.csm = csm::SettingsFrom(ParamValues::Parse("sdsm", csm::CsmParams(), shared), "sdsm");
   s.partition = ParsePartitionScheme(p.getChoice("partition"));
   s.tight = p.getInt("tight") != 0;
   const std::string& cull = p.getChoice("cull");
