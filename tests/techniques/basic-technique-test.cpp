@@ -7,6 +7,7 @@
 #include <regex>
 
 #include "backend-test.h"
+#include "cross-backend.h"
 #include "floating-box.h"
 #include "renderer.h"
 
@@ -118,25 +119,9 @@ SP_INSTANTIATE_BACKEND_TESTS(BasicTechniqueTest);
 // there up to 0.5% of pixels may differ.
 TEST(BasicTechniqueCrossBackend, DefaultSceneRendersIdenticallyOnBothBackends) {
   const uint32_t W = 192, H = 108;
-  std::vector<uint8_t> images[2];
-  std::string renderer[2];
-  const Backend backends[2] = {Backend::Vulkan, Backend::OpenGL};
-  scene::Scene s = scene::MakeBuiltinScene("default");
-  for (int i = 0; i < 2; ++i) {
-    DeviceDesc dd;
-    dd.backend = backends[i];
-    Ref<Device> dev = CreateDevice(dd);
-    renderer[i] = dev->Info().deviceName;
-    std::unique_ptr<tech::Technique> t = tech::CreateTechnique("basic");
-    t->Configure(*dev, tech::ParamValues::Parse("basic", t->Params(), {{"resolution", "1024"}}));
-    tech::Renderer r(*dev, s, std::move(t), W, H);
-    r.RenderFrame(s.camera, s.light);
-    images[i] = r.ReadColor();
-    EXPECT_EQ(dev->ValidationErrorCount(), 0u) << dev->LastValidationError();
-  }
-  bool mesa = renderer[0].find("llvmpipe") != std::string::npos && renderer[1].find("llvmpipe") != std::string::npos;
-  size_t differing = CompareImages("default-basic", W, H, images[0].data(), images[1].data(), 0);
-  if (mesa) {
+  CrossBackendFrame f = RenderOnBothBackends("basic", {{"resolution", "1024"}}, scene::MakeBuiltinScene("default"), W, H);
+  size_t differing = CompareImages("default-basic", W, H, f.images[0].data(), f.images[1].data(), 0);
+  if (f.mesa) {
     EXPECT_EQ(differing, 0u) << "Vulkan and GL images differ on Mesa; see the heat map in " << TestOutputDir();
   } else {
     EXPECT_LT(differing, size_t(W * H / 200)) << "more than 0.5% of pixels differ across backends";

@@ -12,6 +12,7 @@
 #include "backend-test.h"
 #include "bench.h"
 #include "csm/csm-technique.h"
+#include "cross-backend.h"
 #include "floating-box.h"
 #include "gpu-timer.h"
 #include "renderer.h"
@@ -376,28 +377,13 @@ TEST(CsmMomentsCrossBackend, DefaultSceneWithEvsm4RendersIdenticallyOnBothBacken
   const uint32_t W = 192, H = 108;
   scene::Scene s = scene::MakeBuiltinScene("default");
   for (const char* msaa : {"1", "4"}) {
-    std::vector<uint8_t> images[2];
-    std::string renderer[2];
-    const Backend backends[2] = {Backend::Vulkan, Backend::OpenGL};
-    for (int i = 0; i < 2; ++i) {
-      DeviceDesc dd;
-      dd.backend = backends[i];
-      Ref<Device> dev = CreateDevice(dd);
-      renderer[i] = dev->Info().deviceName;
-      auto t = std::make_unique<CsmTechnique>();
-      t->Configure(*dev, tech::ParamValues::Parse("csm", t->Params(),
-                                                  {{"resolution", "512"}, {"filter", "evsm4"}, {"msaa", msaa}, {"blur", "0.05"}, {"blend", "0.2"}}));
-      tech::Renderer r(*dev, s, std::move(t), W, H);
-      r.RenderFrame(s.camera, s.light);
-      images[i] = r.ReadColor();
-      EXPECT_EQ(dev->ValidationErrorCount(), 0u) << dev->LastValidationError();
-    }
-    bool mesa = renderer[0].find("llvmpipe") != std::string::npos && renderer[1].find("llvmpipe") != std::string::npos;
+    CrossBackendFrame f = RenderOnBothBackends(
+        "csm", {{"resolution", "512"}, {"filter", "evsm4"}, {"msaa", msaa}, {"blur", "0.05"}, {"blend", "0.2"}}, s, W, H);
     std::string name = std::string("default-csm-evsm4-msaa") + msaa;
-    size_t differing = CompareImages(name, W, H, images[0].data(), images[1].data(), 0);
-    size_t beyondOne = CompareImages(name + "-beyond1", W, H, images[0].data(), images[1].data(), 1);
+    size_t differing = CompareImages(name, W, H, f.images[0].data(), f.images[1].data(), 0);
+    size_t beyondOne = CompareImages(name + "-beyond1", W, H, f.images[0].data(), f.images[1].data(), 1);
     std::printf("msaa=%s: %zu pixels differ, %zu by more than 1\n", msaa, differing, beyondOne);
-    if (!mesa) {
+    if (!f.mesa) {
       EXPECT_LE(differing, size_t(W * H / 200)) << "msaa=" << msaa;
     } else if (std::string(msaa) == "1") {
       EXPECT_EQ(differing, 0u);

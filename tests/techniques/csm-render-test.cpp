@@ -7,6 +7,7 @@
 #include <set>
 
 #include "backend-test.h"
+#include "cross-backend.h"
 #include "csm/csm-technique.h"
 #include "floating-box.h"
 #include "metrics.h"
@@ -285,25 +286,10 @@ SP_INSTANTIATE_BACKEND_TESTS(CsmTechniqueTest);
 // elsewhere up to 0.5% of pixels may differ at shadow edges.
 TEST(CsmCrossBackend, DefaultSceneRendersIdenticallyOnBothBackends) {
   const uint32_t W = 192, H = 108;
-  std::vector<uint8_t> images[2];
-  std::string renderer[2];
-  const Backend backends[2] = {Backend::Vulkan, Backend::OpenGL};
-  scene::Scene s = scene::MakeBuiltinScene("default");
-  for (int i = 0; i < 2; ++i) {
-    DeviceDesc dd;
-    dd.backend = backends[i];
-    Ref<Device> dev = CreateDevice(dd);
-    renderer[i] = dev->Info().deviceName;
-    std::unique_ptr<tech::Technique> t = tech::CreateTechnique("csm");
-    t->Configure(*dev, tech::ParamValues::Parse("csm", t->Params(), {{"resolution", "512"}, {"filter", "poisson"}, {"blend", "0.2"}}));
-    tech::Renderer r(*dev, s, std::move(t), W, H);
-    r.RenderFrame(s.camera, s.light);
-    images[i] = r.ReadColor();
-    EXPECT_EQ(dev->ValidationErrorCount(), 0u) << dev->LastValidationError();
-  }
-  bool mesa = renderer[0].find("llvmpipe") != std::string::npos && renderer[1].find("llvmpipe") != std::string::npos;
-  size_t differing = CompareImages("default-csm", W, H, images[0].data(), images[1].data(), 0);
-  EXPECT_LE(differing, mesa ? 0u : size_t(W * H / 200));
+  CrossBackendFrame f = RenderOnBothBackends("csm", {{"resolution", "512"}, {"filter", "poisson"}, {"blend", "0.2"}},
+                                             scene::MakeBuiltinScene("default"), W, H);
+  size_t differing = CompareImages("default-csm", W, H, f.images[0].data(), f.images[1].data(), 0);
+  EXPECT_LE(differing, f.mesa ? 0u : size_t(W * H / 200));
 }
 
 }  // namespace
