@@ -33,8 +33,8 @@ std::unique_ptr<VkBufferObj> CreateBufferObj(VulkanDevice* dev, Buffer& buffer, 
   // lavapipe's indexed indirect draws ignore the index buffer's binding offset, which the draw
   // then works around with a copy; an index buffer of its own sits at offset 0 and needs none
   // (only an IASetIndexBuffer offset still does).
-  bool ownIndexBuffer = (d.BindFlags & BIND_INDEX_BUFFER) && dev->feat.indirectIgnoresIndexOffset;
-  b->range = dev->alloc.AllocateBuffer(size, b->kind, call, object, ownIndexBuffer);
+  b->ownVkBuffer = (d.BindFlags & BIND_INDEX_BUFFER) && dev->feat.indirectIgnoresIndexOffset;
+  b->range = dev->alloc.AllocateBuffer(size, b->kind, call, object, b->ownVkBuffer);
   // Fresh ranges are idle (freed ranges are returned only after their last batch finished), so
   // host-visible memory can be written directly; D3D11 hands out zeroed memory.
   if (b->range.mapped) {

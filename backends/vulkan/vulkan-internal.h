@@ -178,6 +178,9 @@ struct VkBufferObj final : TrackedObject {
   const Buffer* owner = nullptr;
   BUFFER_DESC desc;
   MemoryKind kind = MemoryKind::Device;
+  // Every version gets a VkBuffer of its own (offset 0): index buffers on drivers whose indexed
+  // indirect draws ignore the binding offset (see CreateBuffer).
+  bool ownVkBuffer = false;
   BufferRange range;  // current storage (a dynamic buffer's latest version)
   AccessState state;
   uint64_t contentVersion = 1;  // changes with every write, for repacked constant buffers

@@ -77,10 +77,7 @@ void VulkanContext::Rename(VkBufferObj& b) {
     fresh = b.retired.front().range;
     b.retired.pop_front();
   }
-  if (!fresh) {
-    bool ownIndexBuffer = (b.desc.BindFlags & BIND_INDEX_BUFFER) && dev_->feat.indirectIgnoresIndexOffset;  // see CreateBuffer
-    fresh = dev_->alloc.AllocateBuffer(b.range.size, b.kind, "Map", DescribeObject(b.owner), ownIndexBuffer);
-  }
+  if (!fresh) fresh = dev_->alloc.AllocateBuffer(b.range.size, b.kind, "Map", DescribeObject(b.owner), b.ownVkBuffer);
   b.retired.push_back({b.range, b.lastUse});
   b.range = fresh;
   b.state = {};
