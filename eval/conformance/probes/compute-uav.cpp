@@ -227,23 +227,20 @@ struct Item { float a; float2 b; float3 c; uint d; };
 void Fill(inout Item it, uint i) { it.a = i + 0.5; it.b = float2(i * 2, -1.0 * i); it.c = float3(i, i + 100, i + 200); it.d = i * 3 + 1; }
 )";
   try {
-    MakeCS(device, std::string(item) + "RWStructuredBuffer<Item> items : register(u0);\n[numthreads(1, 1, 1)] void main() { Item it; Fill(it, 0); items[0] = it; }\n",
-           "structured-packed-compile");
+    return CheckStructured(device, "structured-packed", item, 7, [](uint32_t i) {
+      return std::vector<uint32_t>{FloatBits(i + 0.5f),
+                                   FloatBits(float(i * 2)),
+                                   FloatBits(-1.0f * float(i)),
+                                   FloatBits(float(i)),
+                                   FloatBits(float(i * 1000)),
+                                   FloatBits(float(i + 200)),
+                                   i * 3 + 1};
+    });
   } catch (const Error& e) {
-    if (std::string(e.what()).find("4-byte packed") != std::string::npos)
-      return Unsupported("the toolchain rejects structured-buffer elements whose members D3D11 packs at 4 bytes across a 16-byte boundary "
-                         "(SP_SHADER_COMPILE_FAILED names the buffer; reorder or pad members)");
-    throw;
+    if (std::string(e.what()).find("4-byte packed") == std::string::npos) throw;
+    return Unsupported("the toolchain rejects structured-buffer elements whose members D3D11 packs at 4 bytes across a 16-byte boundary "
+                       "(SP_SHADER_COMPILE_FAILED names the buffer; reorder or pad members)");
   }
-  return CheckStructured(device, "structured-packed", item, 7, [](uint32_t i) {
-    return std::vector<uint32_t>{FloatBits(i + 0.5f),
-                                 FloatBits(float(i * 2)),
-                                 FloatBits(-1.0f * float(i)),
-                                 FloatBits(float(i)),
-                                 FloatBits(float(i * 1000)),
-                                 FloatBits(float(i + 200)),
-                                 i * 3 + 1};
-  });
 }
 
 SP_PROBE(kGroup, "RWByteAddressBuffer: Load/Store 1-4 words at 4-byte offsets",
