@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "renderer.h"
+#include <sp/tech/renderer.h>
 
 namespace sp::cli {
 

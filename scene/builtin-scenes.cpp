@@ -6,7 +6,7 @@
 #include <stdexcept>
 
 #include "procedural/procedural.h"
-#include "scene.h"
+#include <sp/scene/scene.h>
 
 namespace sp::scene {
 namespace proc {

@@ -5,7 +5,7 @@
 #include <glm/ext/matrix_transform.hpp>
 #include <stdexcept>
 
-#include "scene.h"
+#include <sp/scene/scene.h>
 
 namespace sp::scene {
 

@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <tiny_gltf.h>
 
-#include "scene.h"
+#include <sp/scene/scene.h>
 
 namespace sp::scene {
 namespace {

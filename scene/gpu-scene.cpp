@@ -1,4 +1,4 @@
-#include "gpu-scene.h"
+#include <sp/scene/gpu-scene.h>
 
 #include <stdexcept>
 

@@ -2,7 +2,7 @@
 // flat faces so shadow terminators are not smoothed away.
 #include <glm/gtc/constants.hpp>
 
-#include "scene.h"
+#include <sp/scene/scene.h>
 
 namespace sp::scene {
 namespace {

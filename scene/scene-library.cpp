@@ -2,7 +2,7 @@
 #include <cstdlib>
 #include <stdexcept>
 
-#include "scene.h"
+#include <sp/scene/scene.h>
 
 namespace sp::scene {
 

@@ -1,4 +1,4 @@
-#include "scene.h"
+#include <sp/scene/scene.h>
 
 #include <glm/ext/matrix_clip_space.hpp>
 #include <glm/ext/matrix_transform.hpp>

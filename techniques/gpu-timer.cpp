@@ -1,4 +1,4 @@
-#include "gpu-timer.h"
+#include <sp/tech/gpu-timer.h>
 
 #include <stdexcept>
 

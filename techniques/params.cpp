@@ -1,7 +1,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "technique.h"
+#include <sp/tech/technique.h>
 
 namespace sp::tech {
 

@@ -2,7 +2,7 @@
 #include <functional>
 #include <stdexcept>
 
-#include "technique.h"
+#include <sp/tech/technique.h>
 
 namespace sp::tech {
 

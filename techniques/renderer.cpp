@@ -1,4 +1,4 @@
-#include "renderer.h"
+#include <sp/tech/renderer.h>
 
 #include <cstring>
 #include <stdexcept>

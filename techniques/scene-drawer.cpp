@@ -1,7 +1,7 @@
 #include <cstdlib>
 #include <cstring>
 
-#include "technique.h"
+#include <sp/tech/technique.h>
 
 namespace sp::tech {
 

@@ -1,5 +1,5 @@
 // Resources every technique makes the same way (technique.h).
-#include "technique.h"
+#include <sp/tech/technique.h>
 
 namespace sp::tech {
 

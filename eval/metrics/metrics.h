@@ -8,7 +8,7 @@
 #include <filesystem>
 #include <vector>
 
-#include "renderer.h"
+#include <sp/tech/renderer.h>
 
 namespace sp::eval {
 

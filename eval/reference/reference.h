@@ -27,7 +27,7 @@
 #include <memory>
 #include <string>
 
-#include "scene.h"
+#include <sp/scene/scene.h>
 
 namespace sp::eval {
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "scene.h"
+#include <sp/scene/scene.h>
 
 namespace sp::scene::proc {
 

@@ -4,7 +4,7 @@
 #include <glm/ext/matrix_clip_space.hpp>
 #include <glm/ext/matrix_transform.hpp>
 
-#include "technique.h"
+#include <sp/tech/technique.h>
 
 namespace sp::tech {
 namespace {

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "scene.h"
+#include <sp/scene/scene.h>
 
 namespace sp::tech::csm {
 

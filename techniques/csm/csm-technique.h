@@ -30,7 +30,7 @@
 
 #include "cascade-fit.h"
 #include "moments/moment-maps.h"
-#include "technique.h"
+#include <sp/tech/technique.h>
 
 namespace sp::tech::csm {
 

@@ -25,8 +25,8 @@
 #include <string>
 #include <vector>
 
-#include "gpu-timer.h"
-#include "technique.h"
+#include <sp/tech/gpu-timer.h>
+#include <sp/tech/technique.h>
 
 namespace sp::tech {
 

@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <tuple>
 
-#include "technique.h"
+#include <sp/tech/technique.h>
 
 namespace sp::tech::sdsm {
 namespace {

@@ -27,8 +27,8 @@
 #include <sp/rhi/rhi.h>
 #include <vector>
 
-#include "gpu-scene.h"
-#include "gpu-timer.h"
+#include <sp/scene/gpu-scene.h>
+#include <sp/tech/gpu-timer.h>
 #include "sdsm/partitions.h"
 
 namespace sp::tech::sdsm {

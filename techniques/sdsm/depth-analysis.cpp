@@ -4,7 +4,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "technique.h"
+#include <sp/tech/technique.h>
 
 namespace sp::tech::sdsm {
 namespace {

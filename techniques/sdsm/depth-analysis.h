@@ -17,7 +17,7 @@
 #pragma once
 #include <sp/rhi/rhi.h>
 
-#include "gpu-timer.h"
+#include <sp/tech/gpu-timer.h>
 #include "sdsm/analysis-frame.h"
 #include "sdsm/partitions.h"
 

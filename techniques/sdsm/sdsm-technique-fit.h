@@ -17,7 +17,7 @@
 #include <glm/glm.hpp>
 #include <vector>
 
-#include "scene.h"
+#include <sp/scene/scene.h>
 #include "sdsm/analysis-frame.h"
 
 namespace sp::tech::sdsm {

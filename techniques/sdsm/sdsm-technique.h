@@ -37,7 +37,7 @@
 #include "sdsm/caster-culling.h"
 #include "sdsm/depth-analysis.h"
 #include "sdsm/sdsm-technique-fit.h"
-#include "technique.h"
+#include <sp/tech/technique.h>
 
 namespace sp::tech::sdsm {
 

@@ -14,7 +14,7 @@
 #include <thread>
 
 #include "reference.h"
-#include "scene.h"
+#include <sp/scene/scene.h>
 
 namespace sp::test {
 namespace {

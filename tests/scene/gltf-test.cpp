@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "scene.h"
+#include <sp/scene/scene.h>
 
 namespace sp::test {
 namespace {

@@ -12,7 +12,7 @@
 #include <map>
 #include <tuple>
 
-#include "scene.h"
+#include <sp/scene/scene.h>
 
 namespace sp::test {
 namespace {

@@ -9,7 +9,7 @@
 #include "backend-test.h"
 #include "cross-backend.h"
 #include "floating-box.h"
-#include "renderer.h"
+#include <sp/tech/renderer.h>
 
 namespace sp::test {
 namespace {

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "backend-test.h"
-#include "renderer.h"
+#include <sp/tech/renderer.h>
 
 namespace sp::test {
 

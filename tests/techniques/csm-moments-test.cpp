@@ -14,8 +14,8 @@
 #include "csm/csm-technique.h"
 #include "cross-backend.h"
 #include "floating-box.h"
-#include "gpu-timer.h"
-#include "renderer.h"
+#include <sp/tech/gpu-timer.h>
+#include <sp/tech/renderer.h>
 
 namespace sp::test {
 namespace {

@@ -11,7 +11,7 @@
 #include "csm/csm-technique.h"
 #include "floating-box.h"
 #include "metrics.h"
-#include "renderer.h"
+#include <sp/tech/renderer.h>
 
 namespace sp::test {
 namespace {

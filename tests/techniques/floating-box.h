@@ -6,7 +6,7 @@
 #include <glm/ext/matrix_transform.hpp>
 #include <vector>
 
-#include "scene.h"
+#include <sp/scene/scene.h>
 
 namespace sp::test {
 

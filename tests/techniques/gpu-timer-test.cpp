@@ -2,7 +2,7 @@
 // frame is returned once, results are held back at most kMaxFramesInFlight frames, and misuse
 // (unbalanced or nested passes, frames) throws instead of measuring nonsense.
 #include "backend-test.h"
-#include "renderer.h"
+#include <sp/tech/renderer.h>
 
 namespace sp::test {
 namespace {

@@ -6,7 +6,7 @@
 #include <limits>
 
 #include "backend-test.h"
-#include "gpu-timer.h"
+#include <sp/tech/gpu-timer.h>
 #include "moments/moment-maps.h"
 
 namespace sp::test {

@@ -11,7 +11,7 @@
 #include <random>
 
 #include "backend-test.h"
-#include "scene.h"
+#include <sp/scene/scene.h>
 #include "sdsm/analysis-readback.h"
 #include "sdsm/depth-analysis.h"
 

@@ -8,10 +8,10 @@
 #include <set>
 
 #include "backend-test.h"
-#include "scene.h"
+#include <sp/scene/scene.h>
 #include "sdsm/caster-culling.h"
 #include "sdsm/depth-analysis.h"
-#include "technique.h"
+#include <sp/tech/technique.h>
 
 namespace sp::test {
 namespace {

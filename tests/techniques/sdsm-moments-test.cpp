@@ -7,7 +7,7 @@
 
 #include "backend-test.h"
 #include "floating-box.h"
-#include "renderer.h"
+#include <sp/tech/renderer.h>
 #include "sdsm/sdsm-technique.h"
 
 namespace sp::test {

@@ -9,7 +9,7 @@
 #include <limits>
 
 #include "backend-test.h"
-#include "scene.h"
+#include <sp/scene/scene.h>
 #include "sdsm/analysis-frame.h"
 #include "sdsm/partitions.h"
 

@@ -11,7 +11,7 @@
 #include "backend-test.h"
 #include "bench.h"
 #include "floating-box.h"
-#include "renderer.h"
+#include <sp/tech/renderer.h>
 #include "sdsm/sdsm-technique.h"
 
 namespace sp::test {

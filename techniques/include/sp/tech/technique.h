@@ -16,8 +16,8 @@
 #include <string>
 #include <vector>
 
-#include "gpu-scene.h"
-#include "gpu-timer.h"
+#include <sp/scene/gpu-scene.h>
+#include <sp/tech/gpu-timer.h>
 
 namespace sp::tech {
 

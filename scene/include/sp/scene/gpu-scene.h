@@ -3,7 +3,7 @@
 #pragma once
 #include <sp/rhi/rhi.h>
 
-#include "scene.h"
+#include <sp/scene/scene.h>
 
 namespace sp::scene {
 

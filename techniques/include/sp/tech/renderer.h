@@ -6,7 +6,7 @@
 // position, normal and N.L, the technique's visibility, its shadow lookup and the albedo, one
 // render target each, read back with ReadLab(). The normal lit pass is unchanged by it.
 #pragma once
-#include "technique.h"
+#include <sp/tech/technique.h>
 
 namespace sp::tech {
 
