@@ -52,6 +52,20 @@ enum class ErrorId : uint32_t {
 
 std::string_view ErrorIdName(ErrorId id);
 
+// HRESULT, for the D3D11-shaped overloads (out-pointer Create* calls, D3DCompile-style
+// compilation) that return a status instead of throwing, so ported code keeps its
+// `if (FAILED(hr))` / V_RETURN structure. Values are Windows' own.
+using HRESULT = int32_t;
+inline constexpr HRESULT S_OK = 0;
+inline constexpr HRESULT S_FALSE = 1;
+inline constexpr HRESULT E_NOTIMPL = int32_t(0x80004001u);
+inline constexpr HRESULT E_FAIL = int32_t(0x80004005u);
+inline constexpr HRESULT E_OUTOFMEMORY = int32_t(0x8007000Eu);
+inline constexpr HRESULT E_INVALIDARG = int32_t(0x80070057u);
+inline constexpr HRESULT DXGI_ERROR_UNSUPPORTED = int32_t(0x887A0004u);
+inline constexpr bool SUCCEEDED(HRESULT hr) { return hr >= 0; }
+inline constexpr bool FAILED(HRESULT hr) { return hr < 0; }
+
 // Thrown by every API call that D3D11 would fail (E_INVALIDARG etc.) or whose misuse the D3D11
 // debug layer reports. what() reads:
 //   "[SP_VIEW_FORMAT_INCOMPATIBLE] CreateShaderResourceView(Texture2D 'shadow map'): ..."
