@@ -47,11 +47,6 @@ void Upload(DeviceContext& ctx, Buffer* b, const T& value) {
 
 }  // namespace
 
-std::filesystem::path ShaderDirectory() {
-  if (const char* e = std::getenv("SHADOWPORT_SHADER_DIR"); e && *e) return e;
-  return SHADOWPORT_SHADER_DIR;
-}
-
 ShaderBytecode CompileTechniqueShader(const std::string& rel, const std::string& target, const std::string& entry,
                                       const std::vector<hlsl::Define>& defines) {
   hlsl::CompileOptions o;

@@ -55,7 +55,22 @@ class ParamValues {
 // Shaders compiled for techniques: the same options everywhere (shaders-hlsl/ include path, cache).
 ShaderBytecode CompileTechniqueShader(const std::string& relativePath, const std::string& target, const std::string& entry,
                                       const std::vector<hlsl::Define>& defines = {});
+
+// The techniques compile their HLSL (shaders-hlsl/) at run time. ShaderDirectory() is, in order:
+// the folder given to SetShaderDirectory(); $SHADOWPORT_SHADER_DIR; the installed package's
+// share/shadowport/shaders-hlsl when the program was built with find_package(ShadowPort) (the
+// package defines SHADOWPORT_PACKAGE_SHADER_DIR, registered below); the source tree the library
+// was built from; the install prefix it was configured with. Throws std::runtime_error naming
+// every place it looked when none holds the shaders.
 std::filesystem::path ShaderDirectory();
+void SetShaderDirectory(const std::filesystem::path& directory);  // empty: back to the search
+bool RegisterPackageShaderDirectory(const char* directory);
+
+#ifdef SHADOWPORT_PACKAGE_SHADER_DIR
+// Defined by ShadowPortConfig.cmake for programs linking ShadowPort::techniques, so that a
+// relocated install (cmake --install --prefix anywhere) uses its own shaders with no set-up.
+inline const bool kShadowPortPackageShadersRegistered = RegisterPackageShaderDirectory(SHADOWPORT_PACKAGE_SHADER_DIR);
+#endif
 
 struct FrameInputs {
   const scene::Scene* scene = nullptr;
