@@ -7,9 +7,17 @@
 namespace sp::tech {
 namespace {
 
-std::mutex gMutex;
-std::filesystem::path gExplicit;  // SetShaderDirectory
-std::filesystem::path gPackage;   // RegisterPackageShaderDirectory
+// Function-local: RegisterPackageShaderDirectory runs during the static initialisation of the
+// program's own translation units, possibly before this file's globals would be constructed.
+struct Choices {
+  std::mutex mutex;
+  std::filesystem::path explicitDir;  // SetShaderDirectory
+  std::filesystem::path packageDir;   // RegisterPackageShaderDirectory
+};
+Choices& Get() {
+  static Choices choices;
+  return choices;
+}
 
 // A folder holds the shaders when the file every technique needs is there.
 bool HoldsShaders(const std::filesystem::path& dir) {
@@ -20,27 +28,28 @@ bool HoldsShaders(const std::filesystem::path& dir) {
 }  // namespace
 
 void SetShaderDirectory(const std::filesystem::path& directory) {
-  std::lock_guard lock(gMutex);
-  gExplicit = directory;
+  std::lock_guard lock(Get().mutex);
+  Get().explicitDir = directory;
 }
 
 bool RegisterPackageShaderDirectory(const char* directory) {
-  std::lock_guard lock(gMutex);
-  gPackage = directory ? directory : "";
+  std::lock_guard lock(Get().mutex);
+  Get().packageDir = directory ? directory : "";
   return true;
 }
 
 std::filesystem::path ShaderDirectory() {
-  std::lock_guard lock(gMutex);
+  Choices& c = Get();
+  std::lock_guard lock(c.mutex);
   // An explicit choice is used as given, so a wrong one fails loudly at the first compile
   // (naming the missing file) instead of silently falling back to other shaders.
-  if (!gExplicit.empty()) return gExplicit;
+  if (!c.explicitDir.empty()) return c.explicitDir;
   if (const char* e = std::getenv("SHADOWPORT_SHADER_DIR"); e && *e) return e;
-  const std::filesystem::path candidates[] = {gPackage, SHADOWPORT_SHADER_DIR, SHADOWPORT_INSTALLED_SHADER_DIR};
+  const std::filesystem::path candidates[] = {c.packageDir, SHADOWPORT_SHADER_DIR, SHADOWPORT_INSTALLED_SHADER_DIR};
   std::string tried;
-  for (const auto& c : candidates) {
-    if (HoldsShaders(c)) return c;
-    if (!c.empty()) tried += "\n  " + c.string();
+  for (const auto& dir : candidates) {
+    if (HoldsShaders(dir)) return dir;
+    if (!dir.empty()) tried += "\n  " + dir.string();
   }
   throw std::runtime_error("ShadowPort's technique shaders (shaders-hlsl/) were not found; looked in:" + tried +
                            "\nset SHADOWPORT_SHADER_DIR or call sp::tech::SetShaderDirectory()");

@@ -4,6 +4,7 @@
 //
 //   shadow-map [--backend vulkan|gl] [--size N] [--out shadow-map.png]
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -75,10 +76,10 @@ int main(int argc, char** argv) {
   sp::DeviceDesc dd;
   uint32_t size = 256;
   std::string out = "shadow-map.png";
-  for (int i = 1; i + 1 < argc; i += 2) {
-    std::string k = argv[i], v = argv[i + 1];
+  for (int i = 1; i < argc; i += 2) {
+    std::string k = argv[i], v = i + 1 < argc ? argv[i + 1] : "";
     if (k == "--backend" && sp::ParseBackend(v, &dd.backend)) continue;
-    if (k == "--size") { size = uint32_t(std::stoul(v)); continue; }
+    if (k == "--size" && std::atoi(v.c_str()) > 0) { size = uint32_t(std::atoi(v.c_str())); continue; }
     if (k == "--out") { out = v; continue; }
     std::fprintf(stderr, "usage: shadow-map [--backend vulkan|gl] [--size N] [--out file.png]\n");
     return 2;

@@ -120,17 +120,16 @@ def expected_image(scene, width, height):
     ndotl = np.clip(normal @ to_light, 0.0, 1.0)
     albedo = colors[np.maximum(obj, 0)]
     amb = scene["ambient"]
-    light = scene.get("light_color", 1.0)
+    light = np.array(scene.get("light_color", 1.0), float)
     if scene["shading"] == "ambient-lerp":      # c * (a + (1 - a) * ndotl * vis)
         lit = albedo * (amb + (1 - amb) * ndotl)[:, None]
         shadow = albedo * amb
     else:                                         # "lambert": c * (a + light * ndotl * vis)
-        lit = albedo * (amb + light * ndotl)[:, None]
+        lit = albedo * (amb + light * ndotl[:, None])
         shadow = albedo * amb
-    if scene.get("srgb"):
+    lit[~hit] = shadow[~hit] = np.array(scene["sky"], float)
+    if scene.get("srgb"):  # an sRGB render target encodes on write
         lit, shadow = srgb_encode(lit), srgb_encode(shadow)
-    sky = np.array(scene["sky"], float)
-    lit[~hit] = shadow[~hit] = sky
     shape = (height, width)
     return (lit.reshape(shape + (3,)), shadow.reshape(shape + (3,)), visible.reshape(shape),
             obj.reshape(shape), hit.reshape(shape))

@@ -15,20 +15,34 @@ add_test(NAME samples.check_rejects_a_wrong_picture
 set_tests_properties(samples.check_rejects_a_wrong_picture PROPERTIES FIXTURES_REQUIRED sp_samples_installed)
 
 # One test per sample: both backends, validation on, each picture against the ray trace and
-# the two against each other. ARGS: extra arguments for the sample.
+# the two against each other. ARGN: the sample's arguments before the common ones.
 function(sp_sample_test name exe scene)
-  set(run "mkdir -p \"${SP_SAMPLES_OUT}\"")
+  set(run "mkdir -p \"${SP_SAMPLES_OUT}\" && cd \"${SP_SAMPLES_OUT}\"")
+  if(name MATCHES "^technique")
+    # The technique sample loads glTF: the checker's boxes written as a file, and the camera
+    # and light it expects as arguments.
+    string(APPEND run " && args=$(${SP_REPORT_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/samples/make_boxes_gltf.py ${scene} ${name}.gltf)")
+    list(PREPEND ARGN ${name}.gltf)
+  endif()
+  list(JOIN ARGN " " sample_args)
   foreach(backend vulkan gl)
-    string(APPEND run " && \"${exe}\" --backend ${backend} --size 192 --out \"${SP_SAMPLES_OUT}/${name}-${backend}.png\" ${ARGN}")
+    string(APPEND run " && \"${exe}\" ${sample_args} --backend ${backend} --size 192 --out ${name}-${backend}.png")
+    if(name MATCHES "^technique")
+      string(APPEND run " $args")
+    endif()
   endforeach()
   string(APPEND run " && ${SP_REPORT_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/samples/check_sample_image.py ${scene}"
-                    " \"${SP_SAMPLES_OUT}/${name}-vulkan.png\" \"${SP_SAMPLES_OUT}/${name}-gl.png\"")
+                    " ${name}-vulkan.png ${name}-gl.png")
   add_test(NAME samples.${name} COMMAND bash -c "${run}")
   set_tests_properties(samples.${name} PROPERTIES FIXTURES_REQUIRED sp_samples_installed TIMEOUT 300)
 endfunction()
 
-sp_sample_test(shadow_map ${PROJECT_BINARY_DIR}/samples-installed/shadow-map/shadow-map
-               ${CMAKE_CURRENT_SOURCE_DIR}/samples/shadow-map.json)
+set(SP_SAMPLES_BIN ${PROJECT_BINARY_DIR}/samples-installed)
+sp_sample_test(shadow_map ${SP_SAMPLES_BIN}/shadow-map/shadow-map ${CMAKE_CURRENT_SOURCE_DIR}/samples/shadow-map.json)
+foreach(technique csm sdsm)
+  sp_sample_test(technique_${technique} ${SP_SAMPLES_BIN}/technique/technique ${CMAKE_CURRENT_SOURCE_DIR}/samples/technique-boxes.json
+                 --technique ${technique})
+endforeach()
 
 # add_subdirectory(shadowport) from another project: configure, build the RHI and one sample
 # (a second compile of the library, so it runs alone at the end), run it.
