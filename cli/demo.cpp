@@ -159,7 +159,7 @@ int RunDemo(const Args& a) {
   // matplotlib keeps a font cache under $HOME unless told otherwise; the demo writes under --out.
   if (const char* e = std::getenv("MPLCONFIGDIR"); !e || !*e) setenv("MPLCONFIGDIR", (dir / "lab" / "mplconfig").c_str(), 1);
   say("writing the report");
-  std::string intro = "A small lab run of `shadowport demo`: " + what +
+  std::string intro = "A small lab run of shadowport demo: " + what +
                       ", on Vulkan and OpenGL with validation on. Every pixel is judged against an Embree ray-traced reference "
                       "of the same frame; the images show the path's first frame.";
   int reportRc = RunReportScript({o.out.string()}, dir.string(), {"--title", "ShadowPort demo: " + o.scenes[0], "--intro", intro});

@@ -22,7 +22,8 @@ tr.front td:first-child { font-weight: bold; }
 .scroll { overflow-x: auto; }
 img.chart { max-width: 100%; border: 1px solid #eee; }
 table.images td { vertical-align: top; text-align: center; }
-table.images img { width: 300px; image-rendering: pixelated; }
+table.images img { width: 280px; image-rendering: pixelated; }
+table.images tr > th:first-child { min-width: 10em; }
 dl.legend dt { font-family: monospace; font-weight: bold; float: left; clear: left;
                width: 17em; }
 dl.legend dd { margin-left: 18em; margin-bottom: 0.25em; }
