@@ -1,4 +1,6 @@
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <stdexcept>
 
@@ -77,6 +79,42 @@ std::map<std::string, std::string> ParseParams(const std::vector<std::string>& p
     out[p.substr(0, eq)] = p.substr(eq + 1);
   }
   return out;
+}
+
+std::vector<std::string> SplitList(const std::string& text, const std::string& option) {
+  std::vector<std::string> out;
+  size_t start = 0;
+  while (true) {
+    size_t comma = text.find(',', start);
+    std::string item = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    if (item.empty()) throw std::invalid_argument("--" + option + " '" + text + "' has an empty item");
+    out.push_back(item);
+    if (comma == std::string::npos) return out;
+    start = comma + 1;
+  }
+}
+
+uint64_t ParseCount(const std::string& text, const std::string& option, uint64_t min, uint64_t max) {
+  size_t used = 0;
+  unsigned long long v = 0;
+  try {
+    v = std::stoull(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != text.size() || text[0] == '-' || v < min || v > max)
+    throw std::invalid_argument("--" + option + " '" + text + "' must be an integer in [" + std::to_string(min) + ", " + std::to_string(max) + "]");
+  return v;
+}
+
+ProgressPrinter::ProgressPrinter(std::string prefix) : prefix_(std::move(prefix)), start_(std::chrono::steady_clock::now()) {}
+
+double ProgressPrinter::Seconds() const { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(); }
+
+void ProgressPrinter::operator()(const std::string& line) const {
+  double t = Seconds();
+  std::fprintf(stderr, "%s[%2d:%04.1f] %s\n", prefix_.c_str(), int(t) / 60, std::fmod(t, 60.0), line.c_str());
+  std::fflush(stderr);
 }
 
 void WritePng(const std::string& path, uint32_t w, uint32_t h, const uint8_t* rgba) {

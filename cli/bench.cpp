@@ -12,36 +12,6 @@
 
 namespace sp::cli {
 
-namespace {
-
-std::vector<std::string> SplitList(const std::string& text, const std::string& option) {
-  std::vector<std::string> out;
-  size_t start = 0;
-  while (true) {
-    size_t comma = text.find(',', start);
-    std::string item = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
-    if (item.empty()) throw std::invalid_argument("--" + option + " '" + text + "' has an empty item");
-    out.push_back(item);
-    if (comma == std::string::npos) return out;
-    start = comma + 1;
-  }
-}
-
-uint64_t ParseCount(const std::string& text, const std::string& option, uint64_t min, uint64_t max) {
-  size_t used = 0;
-  unsigned long long v = 0;
-  try {
-    v = std::stoull(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used == 0 || used != text.size() || text[0] == '-' || v < min || v > max)
-    throw std::invalid_argument("--" + option + " '" + text + "' must be an integer in [" + std::to_string(min) + ", " + std::to_string(max) + "]");
-  return v;
-}
-
-}  // namespace
-
 int RunBench(const Args& a) {
   a.expectOnly({"scene", "technique", "backend", "size", "frames", "param", "triangles", "path", "out", "reference-cache", "validate"});
   if (!a.positionals().empty()) throw std::invalid_argument("unexpected argument '" + a.positionals()[0] + "'");
@@ -63,23 +33,18 @@ int RunBench(const Args& a) {
   if (a.has("triangles")) o.triangles = ParseCount(a.get("triangles"), "triangles", 1, scene::kMaxTargetTriangles);
   o.path = a.get("path", "slow-pan");
   o.out = a.get("out", "out/bench/results.json");
-  o.referenceCache = a.get("reference-cache", "");
+  o.referenceCache = a.get("reference-cache", "");  // empty: bench::ReferenceCacheDir decides
   o.validate = a.has("validate");
 
-  nlohmann::json doc = bench::RunBench(o, [](const std::string& line) {
-    std::fprintf(stderr, "bench: %s\n", line.c_str());
-    std::fflush(stderr);
-  });
+  ProgressPrinter progress("bench: ");
+  nlohmann::json doc = bench::RunBench(o, progress);
   uint64_t validationErrors = 0;
   for (const auto& run : doc["runs"]) validationErrors += run["checks"]["validation_errors"].get<uint64_t>();
   std::printf("bench: %zu runs -> %s\n", doc["runs"].size(), o.out.string().c_str());
   return validationErrors ? 1 : 0;
 }
 
-int RunReport(const Args& a) {
-  a.expectOnly({"out", "title"});
-  if (a.positionals().empty()) throw std::invalid_argument("no results file given (usage: shadowport report results.json... --out dir)");
-  if (!a.has("out")) throw std::invalid_argument("--out dir is required");
+int RunReportScript(const std::vector<std::string>& results, const std::string& out, const std::vector<std::string>& extraArgs) {
   // Debian's interpreter first: python3-matplotlib installs into it, while a python3 earlier on
   // PATH (pyenv, a venv) usually lacks matplotlib.
   std::string python;
@@ -90,19 +55,16 @@ int RunReport(const Args& a) {
   std::string script = SP_REPORT_SCRIPT;
   if (const char* e = std::getenv("SHADOWPORT_REPORT_SCRIPT"); e && *e) script = e;
   if (script.empty() || !std::filesystem::exists(script)) throw std::runtime_error("report script not found ('" + script + "'); set SHADOWPORT_REPORT_SCRIPT");
-
   std::vector<std::string> argv = {python, script};
-  for (const std::string& p : a.positionals()) argv.push_back(p);
+  argv.insert(argv.end(), results.begin(), results.end());
   argv.push_back("--out");
-  argv.push_back(a.get("out"));
-  if (a.has("title")) {
-    argv.push_back("--title");
-    argv.push_back(a.get("title"));
-  }
+  argv.push_back(out);
+  argv.insert(argv.end(), extraArgs.begin(), extraArgs.end());
   std::vector<char*> cargv;
   for (std::string& s : argv) cargv.push_back(s.data());
   cargv.push_back(nullptr);
   std::fflush(stdout);
+  std::fflush(stderr);
   pid_t pid = fork();
   if (pid < 0) throw std::runtime_error("cannot start " + python);
   if (pid == 0) {
@@ -112,7 +74,16 @@ int RunReport(const Args& a) {
   }
   int status = 0;
   waitpid(pid, &status, 0);
-  int rc = WIFEXITED(status) ? WEXITSTATUS(status) : 1;
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 1;
+}
+
+int RunReport(const Args& a) {
+  a.expectOnly({"out", "title"});
+  if (a.positionals().empty()) throw std::invalid_argument("no results file given (usage: shadowport report results.json... --out dir)");
+  if (!a.has("out")) throw std::invalid_argument("--out dir is required");
+  std::vector<std::string> extra;
+  if (a.has("title")) extra = {"--title", a.get("title")};
+  int rc = RunReportScript(a.positionals(), a.get("out"), extra);
   if (rc != 0) return rc;
   std::printf("report: open %s\n", (std::filesystem::path(a.get("out")) / "index.html").string().c_str());
   return 0;

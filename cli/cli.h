@@ -1,5 +1,7 @@
 // The `shadowport` command-line program: one function per sub-command.
 #pragma once
+#include <chrono>
+#include <cstdint>
 #include <map>
 #include <string>
 #include <vector>
@@ -25,6 +27,25 @@ class Args {
 void ParseSize(const std::string& text, uint32_t* w, uint32_t* h);  // "1280x720"
 std::map<std::string, std::string> ParseParams(const std::vector<std::string>& params);  // k=v
 void WritePng(const std::string& path, uint32_t w, uint32_t h, const uint8_t* rgba);
+// "a,b,c"; an empty item is an error naming --option.
+std::vector<std::string> SplitList(const std::string& text, const std::string& option);
+uint64_t ParseCount(const std::string& text, const std::string& option, uint64_t min, uint64_t max);
+
+// Progress lines on stderr, each stamped with the time since construction ("[ 1:23.4] ..."), so a
+// long run shows both what it is doing and how long it has taken.
+class ProgressPrinter {
+ public:
+  explicit ProgressPrinter(std::string prefix = "");
+  void operator()(const std::string& line) const;
+  double Seconds() const;
+
+ private:
+  std::string prefix_;
+  std::chrono::steady_clock::time_point start_;
+};
+
+// Runs eval/report/report.py on results files; returns its exit status.
+int RunReportScript(const std::vector<std::string>& results, const std::string& out, const std::vector<std::string>& extraArgs);
 
 int RunRender(const Args& args);
 int RunHlslc(const std::vector<std::string>& argv);

@@ -1,4 +1,4 @@
-// One rendered frame, as `render`, `demo` and tests produce it.
+// One rendered frame, as `render` produces it.
 #pragma once
 #include <map>
 #include <string>
@@ -28,12 +28,5 @@ struct RenderResult {
 };
 
 RenderResult RenderOnce(const RenderJob& job);
-
-struct ImageDiff {
-  size_t differingPixels = 0;
-  int maxDifference = 0;
-  std::vector<uint8_t> heatmap;
-};
-ImageDiff DiffImages(uint32_t w, uint32_t h, const std::vector<uint8_t>& a, const std::vector<uint8_t>& b);
 
 }  // namespace sp::cli

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <iomanip>
 #include <sstream>
 
 #include "bench.h"
@@ -62,6 +63,7 @@ RunResult RunOne(const RunSpec& spec, eval::ReferenceCache& reference, const Pro
   r.technique = technique->Name();
   r.backend = BackendName(spec.backend);
   r.params = params.all();
+  r.paramsGiven = spec.params;
   r.width = spec.width;
   r.height = spec.height;
   r.frames = spec.frames;
@@ -123,7 +125,17 @@ RunResult RunOne(const RunSpec& spec, eval::ReferenceCache& reference, const Pro
   double utilizationSum = 0;
   tech::LabBuffers prev;
   std::vector<float> prevReference;
+  uint32_t frame = 0;
+  reference.SetBeforeTracing([&](size_t pixels) {
+    say(what + ": frame " + std::to_string(frame + 1) + "/" + std::to_string(spec.frames) + ": tracing the reference (" +
+        std::to_string(pixels) + " pixels, Embree)");
+  });
+  struct Unset {
+    eval::ReferenceCache& cache;
+    ~Unset() { cache.SetBeforeTracing({}); }
+  } unset{reference};
   for (uint32_t i = 0; i < spec.frames; ++i) {
+    frame = i;
     scene::Camera cam = cameraAt(i);
     tech::LabBuffers before;
     if (i > 0) {
@@ -144,15 +156,15 @@ RunResult RunOne(const RunSpec& spec, eval::ReferenceCache& reference, const Pro
     utilizationSum += eval::MeasureUtilization(now, tech.Layers());
     std::vector<float> refF = AsFloat(ref);
     std::ostringstream line;
-    line << what << ": frame " << (i + 1) << "/" << spec.frames << ", misclassified " << a.misclassifiedPct() << "%, reference "
-         << (cached ? "cached" : "traced in " + std::to_string(int(traceMs)) + " ms");
+    line << std::fixed << std::setprecision(3) << what << ": frame " << (i + 1) << "/" << spec.frames << " measured, misclassified "
+         << a.misclassifiedPct() << " %, reference " << (cached ? "from the cache" : "traced in " + std::to_string(int(traceMs)) + " ms");
     if (i > 0) {
       eval::Flicker f = eval::MeasureFlicker(now, before);
       r.flicker.add(f);
       r.flickerSeries.push_back(f.mean());
       r.flickerReprojected.add(eval::MeasureReprojectedFlicker(prev, prev.visibility.data(), now, now.visibility.data()));
       r.flickerReprojectedReference.add(eval::MeasureReprojectedFlicker(prev, prevReference.data(), now, refF.data()));
-      line << ", flicker " << f.mean();
+      line << std::defaultfloat << std::setprecision(2) << ", flicker " << f.mean();
     }
     say(line.str());
     if (i == 0) {
@@ -169,6 +181,8 @@ RunResult RunOne(const RunSpec& spec, eval::ReferenceCache& reference, const Pro
   ctx.ClearState();
   ctx.WaitIdle();
   r.validationErrors = device->ValidationErrorCount();
+  r.validationEnabled = device->Info().validationEnabled;
+  if (r.validationErrors) r.lastValidationError = device->LastValidationError();
   return r;
 }
 

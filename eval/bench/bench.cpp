@@ -3,6 +3,7 @@
 #include <cctype>
 #include <cmath>
 #include <fstream>
+#include <iomanip>
 #include <sstream>
 
 #include "bench.h"
@@ -58,7 +59,48 @@ std::string Slug(const std::string& text) {
 
 double Round(double v, double scale) { return std::round(v * scale) / scale; }
 
+// The parameters of one run: the technique spec's, then the sweep's.
+std::map<std::string, std::string> RunParams(const TechniqueSpec& t, const std::map<std::string, std::string>& sweep) {
+  std::map<std::string, std::string> p = t.params;
+  p.insert(sweep.begin(), sweep.end());
+  return p;
+}
+
 }  // namespace
+
+TechniqueSpec ParseTechniqueSpec(const std::string& text) {
+  TechniqueSpec spec;
+  std::string last;
+  size_t start = 0;
+  while (start <= text.size()) {
+    size_t colon = text.find(':', start);
+    std::string item = text.substr(start, colon == std::string::npos ? std::string::npos : colon - start);
+    if (item.empty()) throw std::invalid_argument("technique '" + text + "' has an empty item (form: name[:param=value]...)");
+    size_t eq = item.find('=');
+    if (spec.name.empty()) {
+      if (eq != std::string::npos) throw std::invalid_argument("technique '" + text + "' must start with a technique name, not '" + item + "'");
+      spec.name = item;
+    } else if (eq == std::string::npos) {
+      if (last.empty()) throw std::invalid_argument("technique '" + text + "': '" + item + "' is not param=value");
+      spec.params[last] += ":" + item;  // a list value: splits=0.1:0.3:0.6
+    } else {
+      std::string k = item.substr(0, eq);
+      if (k.empty()) throw std::invalid_argument("technique '" + text + "': '" + item + "' has no parameter name");
+      if (spec.params.count(k)) throw std::invalid_argument("technique '" + text + "' sets " + k + " twice");
+      spec.params[k] = item.substr(eq + 1);
+      last = k;
+    }
+    if (colon == std::string::npos) break;
+    start = colon + 1;
+  }
+  return spec;
+}
+
+fs::path ReferenceCacheDir(const BenchOptions& o) {
+  if (!o.referenceCache.empty()) return o.referenceCache;
+  fs::path dir = o.out.has_parent_path() ? o.out.parent_path() : fs::path(".");
+  return eval::DefaultReferenceCacheDir(dir / "reference-cache");
+}
 
 void ValidateBenchOptions(const BenchOptions& o) {
   if (o.scenes.empty()) throw std::invalid_argument("no scene given");
@@ -74,9 +116,12 @@ void ValidateBenchOptions(const BenchOptions& o) {
   if (o.techniques.empty()) throw std::invalid_argument("no technique given");
   if (o.backends.empty()) throw std::invalid_argument("no backend given");
   if (o.frames < 1) throw std::invalid_argument("--frames must be at least 1");
-  for (const std::string& t : o.techniques) {
-    std::unique_ptr<tech::Technique> technique = tech::CreateTechnique(t);  // throws listing the names
-    for (const auto& set : ParamSets(o.params)) tech::ParamValues::Parse(t, technique->Params(), set);
+  for (const std::string& text : o.techniques) {
+    TechniqueSpec t = ParseTechniqueSpec(text);
+    std::unique_ptr<tech::Technique> technique = tech::CreateTechnique(t.name);  // throws listing the names
+    for (const auto& [k, v] : o.params)
+      if (t.params.count(k)) throw std::invalid_argument("parameter " + k + " is set both in --technique " + text + " and by --param");
+    for (const auto& set : ParamSets(o.params)) tech::ParamValues::Parse(t.name, technique->Params(), RunParams(t, set));
   }
 }
 
@@ -100,14 +145,16 @@ nlohmann::json RunToJson(const RunResult& r, const std::map<std::string, std::st
       {"shadow_memory_bytes", r.shadowMemoryBytes},
       {"shadow_triangles", r.shadowTriangles},
   };
-  json params = json::object();
+  json params = json::object(), given = json::object();
   for (const auto& [k, v] : r.params) params[k] = v;
+  for (const auto& [k, v] : r.paramsGiven) given[k] = v;
   json series = {{"misclassified_pct", r.misclassifiedSeries}, {"gpu_ms_total", r.gpuTotalSeries}, {"cpu_ms", r.cpuSeries}};
   if (!r.flickerSeries.empty()) series["flicker"] = r.flickerSeries;
   json run = {
       {"scene", r.scene},
       {"technique", r.technique},
       {"params", params},
+      {"params_given", given},
       {"backend", r.backend},
       {"size", {r.width, r.height}},
       {"frames", r.frames},
@@ -124,8 +171,10 @@ nlohmann::json RunToJson(const RunResult& r, const std::map<std::string, std::st
         {"reference_epsilon", r.referenceEpsilon},
         {"warmup_frames_dropped", r.frames > kWarmupFrames ? kWarmupFrames : 0u},
         {"disjoint_frames", r.disjointFrames},
+        {"validation_enabled", r.validationEnabled},
         {"validation_errors", r.validationErrors}}},
   };
+  if (!r.lastValidationError.empty()) run["checks"]["last_validation_error"] = r.lastValidationError;
   if (!images.empty()) run["images"] = images;
   return run;
 }
@@ -156,28 +205,35 @@ nlohmann::json RunBench(const BenchOptions& o, const Progress& progress) {
     const scene::Scene& sc = scenes[si];
     if (progress) progress("scene " + std::to_string(si + 1) + "/" + std::to_string(scenes.size()) + ": " + sc.name);
     const scene::CameraPath& path = sc.cameraPath(o.path);
-    eval::ReferenceCache cache(sc, o.referenceCache.empty() ? eval::DefaultReferenceCacheDir() : o.referenceCache);
+    eval::ReferenceCache cache(sc, ReferenceCacheDir(o));
     std::string referenceImage;
-    for (const std::string& t : o.techniques)
-      for (const auto& set : sets)
+    for (size_t ti = 0; ti < o.techniques.size(); ++ti)
+      for (const auto& set : sets) {
+        const TechniqueSpec t = ParseTechniqueSpec(o.techniques[ti]);
+        const std::map<std::string, std::string> params = RunParams(t, set);
+        // The first backend's picture, which the others' are compared with.
+        std::vector<uint8_t> firstColor;
+        std::string firstBackend;
         for (Backend b : o.backends) {
           ++done;
           RunSpec spec;
           spec.scene = &sc;
-          spec.technique = t;
-          spec.params = set;
+          spec.technique = t.name;
+          spec.params = params;
           spec.backend = b;
           spec.width = o.width;
           spec.height = o.height;
           spec.frames = o.frames;
           spec.path = &path;
           spec.validate = o.validate;
-          if (progress) progress("run " + std::to_string(done) + "/" + std::to_string(total));
+          if (progress)
+            progress("run " + std::to_string(done) + "/" + std::to_string(total) + ": technique " + std::to_string(ti + 1) + "/" +
+                     std::to_string(o.techniques.size()) + " (" + o.techniques[ti] + ") on " + BackendName(b));
           RunResult r = RunOne(spec, cache, progress);
 
           // Pictures of the path's first frame; the reference once per scene.
-          std::string stem = Slug(sc.name) + "/" + Slug(t);
-          for (const auto& [k, v] : set) stem += "-" + Slug(k + "=" + v);
+          std::string stem = Slug(sc.name) + "/" + Slug(t.name);
+          for (const auto& [k, v] : params) stem += "-" + Slug(k + "=" + v);
           stem += std::string("-") + BackendName(b);
           std::map<std::string, std::string> images;
           const tech::LabBuffers& f = r.firstFrame;
@@ -196,17 +252,39 @@ nlohmann::json RunBench(const BenchOptions& o, const Progress& progress) {
             eval::WritePng(dir / referenceImage, f.width, f.height, eval::ReferenceImage(f, r.firstReference.data(), r.light).data());
           }
           images["reference"] = referenceImage;
-          doc["runs"].push_back(RunToJson(r, images));
+          nlohmann::json crossBackend;
+          if (firstColor.empty()) {
+            firstColor = f.color;
+            firstBackend = r.backend;
+          } else {
+            eval::ImageDiff d = eval::DiffImages(f.width, f.height, firstColor.data(), f.color.data());
+            write("backend_diff", imageDir + "/" + stem + "-vs-" + firstBackend + "-diff.png", d.imageHeight, d.heatmap);
+            crossBackend = {{"against", firstBackend},
+                            {"image", "color"},
+                            {"pixels", d.pixels},
+                            {"differing_pixels", d.differingPixels},
+                            {"max_difference", d.maxDifference}};
+          }
+          nlohmann::json run = RunToJson(r, images);
+          if (!crossBackend.is_null()) run["cross_backend"] = crossBackend;
+          doc["runs"].push_back(std::move(run));
           // Written after every run, so an interrupted bench keeps what it measured.
           std::ofstream(out) << doc.dump(1) << "\n";
           if (progress) {
             std::ostringstream s;
-            s << "  " << sc.name << " / " << r.technique << " / " << r.backend << ": misclassified " << r.accuracy.misclassifiedPct()
-              << "%, texels/px median " << r.texelsPerPixelMedian << ", flicker " << r.flicker.mean() << ", GPU total " << r.gpuMs["total"]
-              << " ms";
+            std::string variant = t.name;
+            for (const auto& [k, v] : params) variant += " " + k + "=" + v;
+            s << std::fixed << std::setprecision(3) << "  " << sc.name << " / " << variant << " / " << r.backend
+              << ": misclassified " << r.accuracy.misclassifiedPct() << " %, texels/px median " << r.texelsPerPixelMedian
+              << ", GPU total " << std::setprecision(1) << r.gpuMs["total"] << " ms, flicker " << std::defaultfloat << std::setprecision(2)
+              << r.flicker.mean();
+            if (!crossBackend.is_null())
+              s << "; first frame against " << firstBackend << ": " << crossBackend["differing_pixels"].get<uint64_t>()
+                << " pixels differ (max " << crossBackend["max_difference"].get<int>() << ")";
             progress(s.str());
           }
         }
+      }
   }
   std::ofstream file(out);
   file << doc.dump(1) << "\n";

@@ -45,6 +45,7 @@ struct RunSpec {
 struct RunResult {
   std::string scene, technique, backend, device, path;
   std::map<std::string, std::string> params;  // every parameter, defaults filled in
+  std::map<std::string, std::string> paramsGiven;  // those the caller set (what names a variant)
   uint32_t width = 0, height = 0, frames = 0;
   uint64_t sceneTriangles = 0;
 
@@ -66,6 +67,8 @@ struct RunResult {
   scene::DirectionalLight light;
 
   uint64_t validationErrors = 0, disjointFrames = 0;
+  bool validationEnabled = false;           // the layers / debug output were really on
+  std::string lastValidationError;
   float referenceEpsilon = 0;
 };
 
@@ -75,9 +78,18 @@ RunResult RunOne(const RunSpec& spec, eval::ReferenceCache& reference, const Pro
 
 // --- The whole bench: what `shadowport bench` does
 
+// A technique with fixed parameters: `name[:k=v[:k=v]...]`, e.g. `csm:filter=gauss:kernel=5`.
+// An item without '=' continues the previous value, so list values keep their ':' form
+// (`csm:split=manual:splits=0.1:0.3:0.6`). Throws std::invalid_argument for a malformed spec.
+struct TechniqueSpec {
+  std::string name;
+  std::map<std::string, std::string> params;
+};
+TechniqueSpec ParseTechniqueSpec(const std::string& text);
+
 struct BenchOptions {
   std::vector<std::string> scenes = {"default"};
-  std::vector<std::string> techniques = {"basic"};
+  std::vector<std::string> techniques = {"basic"};  // TechniqueSpec texts
   std::vector<Backend> backends = {Backend::Vulkan, Backend::OpenGL};
   uint32_t width = 640, height = 360, frames = 8;
   // name -> values; several values make a sweep (every combination is a run).
@@ -85,15 +97,20 @@ struct BenchOptions {
   uint64_t triangles = 0;  // scene size knob, built-in scenes only
   std::string path = "slow-pan";
   std::filesystem::path out = "results.json";
-  std::filesystem::path referenceCache;  // empty: eval::DefaultReferenceCacheDir()
+  // Empty: $SHADOWPORT_REFERENCE_CACHE, else reference-cache/ beside `out`.
+  std::filesystem::path referenceCache;
   bool validate = false;
 };
 
 // Checks scene, technique and parameter names and values before anything runs; throws
 // std::invalid_argument listing the valid names.
 void ValidateBenchOptions(const BenchOptions& options);
+// The reference cache a bench with these options uses.
+std::filesystem::path ReferenceCacheDir(const BenchOptions& options);
 // Runs everything, writes options.out and the images beside it (<stem>-images/), returns the
-// document written.
+// document written. Where a technique and parameter set ran on several backends, every run after
+// the first carries `cross_backend` (its first frame's colour against the first backend's: pixels,
+// differing_pixels, max_difference) and a `backend_diff` image.
 nlohmann::json RunBench(const BenchOptions& options, const Progress& progress);
 
 // One run as a results record; `images` maps kind -> path relative to the results file.

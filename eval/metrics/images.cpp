@@ -207,6 +207,29 @@ std::vector<uint8_t> ReferenceImage(const tech::LabBuffers& lab, const uint8_t* 
   return out;
 }
 
+ImageDiff DiffImages(uint32_t w, uint32_t h, const uint8_t* a, const uint8_t* b) {
+  std::vector<LegendItem> legend = {{true, {255, 40, 40}, "differs (brighter: larger)"}, {true, {60, 60, 60}, "identical"}};
+  int legendHeight = LayoutLegend(legend, w, nullptr, 0);
+  Canvas canvas(w, h + uint32_t(legendHeight));
+  ImageDiff d;
+  d.pixels = uint64_t(w) * h;
+  for (uint32_t y = 0; y < h; ++y)
+    for (uint32_t x = 0; x < w; ++x) {
+      size_t i = size_t(y) * w + x;
+      int m = 0;
+      for (int c = 0; c < 3; ++c) m = std::max(m, std::abs(int(a[i * 4 + c]) - int(b[i * 4 + c])));
+      d.maxDifference = std::max(d.maxDifference, m);
+      d.differingPixels += m != 0;
+      // Even a difference of one step must stand out against the dimmed picture.
+      uint8_t g = uint8_t((a[i * 4] + a[i * 4 + 1] + a[i * 4 + 2]) / 9);
+      canvas.set(int(x), int(y), m ? Rgb{uint8_t(std::min(255, 150 + m * 8)), 30, 30} : Rgb{g, g, g});
+    }
+  LayoutLegend(legend, w, &canvas, int(h));
+  d.imageHeight = h + uint32_t(legendHeight);
+  d.heatmap = canvas.take();
+  return d;
+}
+
 void WritePng(const std::filesystem::path& path, uint32_t w, uint32_t h, const uint8_t* rgba) {
   if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
   if (!stbi_write_png(path.string().c_str(), int(w), int(h), 4, rgba, int(w * 4)))

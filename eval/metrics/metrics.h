@@ -104,6 +104,15 @@ std::vector<uint8_t> ReferenceImage(const tech::LabBuffers& lab, const uint8_t* 
 // The band colours of TexelDensityHeatMap, index 0 (<= 1/32) to 10 (>= 32).
 std::array<uint8_t, 3> TexelDensityColor(float texelsPerPixel);
 
+// --- Cross-backend: two renderings of the same frame (RGBA8), compared channel by channel (RGB).
+struct ImageDiff {
+  uint64_t pixels = 0, differingPixels = 0;
+  int maxDifference = 0;  // largest channel difference, 0..255
+  uint32_t imageHeight = 0;
+  std::vector<uint8_t> heatmap;  // `a` in dark grey, differing pixels in red (brighter = larger), legend under it
+};
+ImageDiff DiffImages(uint32_t width, uint32_t height, const uint8_t* a, const uint8_t* b);
+
 // Writes an RGBA8 PNG; throws std::runtime_error naming the file.
 void WritePng(const std::filesystem::path& path, uint32_t width, uint32_t height, const uint8_t* rgba);
 

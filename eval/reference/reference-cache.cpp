@@ -129,10 +129,9 @@ void Store(const fs::path& file, uint64_t key, size_t count, const std::vector<u
 
 }  // namespace
 
-fs::path DefaultReferenceCacheDir() {
+fs::path DefaultReferenceCacheDir(const fs::path& beside) {
   if (const char* e = std::getenv("SHADOWPORT_REFERENCE_CACHE"); e && *e) return e;
-  if (const char* home = std::getenv("HOME"); home && *home) return fs::path(home) / ".cache" / "shadowport" / "reference";
-  return fs::temp_directory_path() / "shadowport-reference";
+  return beside;
 }
 
 uint64_t HashSceneGeometry(const scene::Scene& scene) {
@@ -218,6 +217,7 @@ bool ReferenceCache::Visibility(const glm::vec3* positions, const glm::vec3* nor
     return true;
   }
   ++misses_;
+  if (beforeTracing_) beforeTracing_(count);
   // Traced into a scratch buffer: the file holds every pixel while `out` keeps its invalid ones.
   std::vector<uint8_t> result(count, 0);
   Tracer().Visibility(positions, normals, valid, count, light, result.data());

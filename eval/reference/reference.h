@@ -23,6 +23,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <glm/glm.hpp>
 #include <memory>
 #include <string>
@@ -89,8 +90,10 @@ class ReferenceTracer {
 // meshes and transforms, so it does not depend on Scene::finalize() having been called.
 float ReferenceSceneScale(const scene::Scene& scene);
 
-// The default cache directory: $SHADOWPORT_REFERENCE_CACHE, else ~/.cache/shadowport/reference.
-std::filesystem::path DefaultReferenceCacheDir();
+// The cache directory when the caller names none: $SHADOWPORT_REFERENCE_CACHE, else `beside` (the
+// caller's choice, e.g. a folder next to its output). Never $HOME: a tool writes there only when
+// asked to.
+std::filesystem::path DefaultReferenceCacheDir(const std::filesystem::path& beside);
 
 // A 64-bit hash of everything in a scene that affects visibility: each instance's mesh positions,
 // indices and transform (not normals, colours, names, camera or light).
@@ -109,14 +112,17 @@ uint64_t HashSceneGeometry(const scene::Scene& scene);
 // cache never builds one. The scene must outlive the cache object.
 class ReferenceCache {
  public:
-  explicit ReferenceCache(const scene::Scene& scene, std::filesystem::path directory = DefaultReferenceCacheDir(),
-                          ReferenceOptions options = {});
+  ReferenceCache(const scene::Scene& scene, std::filesystem::path directory, ReferenceOptions options = {});
   ~ReferenceCache();
 
   // As ReferenceTracer::Visibility; returns true when the result came from the cache. Throws
   // std::runtime_error naming the file when the cache directory or file cannot be written.
   bool Visibility(const glm::vec3* positions, const glm::vec3* normals, const uint8_t* valid, size_t count,
                   const ReferenceLight& light, uint8_t* out, const std::string& callerKey = {});
+
+  // Called on a miss just before tracing (with the pixel count), so a long-running caller can say
+  // what it is waiting for. Empty: nothing is called.
+  void SetBeforeTracing(std::function<void(size_t count)> callback) { beforeTracing_ = std::move(callback); }
 
   const ReferenceTracer& Tracer();  // builds the tracer if no miss has yet
   bool TracerBuilt() const { return tracer_ != nullptr; }
@@ -138,6 +144,7 @@ class ReferenceCache {
   float epsilon_ = 0;
   std::unique_ptr<ReferenceTracer> tracer_;
   uint64_t hits_ = 0, misses_ = 0;
+  std::function<void(size_t)> beforeTracing_;
 };
 
 }  // namespace sp::eval

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """shadowport report: charts and an HTML page from `shadowport bench` results.
 
-    report.py results.json... --out DIR [--title TEXT]
+    report.py results.json... --out DIR [--title TEXT] [--intro TEXT]
 
 Writes DIR/index.html, one PNG per chart and scene, and DIR/images/ (the runs' images, copied so
 the folder can be moved or archived). Exits 1 with a message naming the file and run when an
@@ -146,6 +146,7 @@ def parse_args(argv):
                         "`shadowport bench`; several files are merged")
     parser.add_argument("--out", required=True, type=Path, help="output folder (created)")
     parser.add_argument("--title", default=DEFAULT_TITLE, help="page title")
+    parser.add_argument("--intro", help="a paragraph under the title: what was run and why")
     return parser.parse_args(argv)
 
 
@@ -170,7 +171,7 @@ def main(argv=None):
         out_dir.mkdir(parents=True, exist_ok=True)
         sections = build_sections(runs, out_dir, report_charts)
         page = render_page(args.title, [(str(p), len(r)) for p, r in zip(args.results, loaded)],
-                           sections, merge_notes, lambda s: run_labels(s.runs))
+                           sections, merge_notes, lambda s: run_labels(s.runs), args.intro)
         (out_dir / "index.html").write_text(page, encoding="utf-8")
     except OSError as e:
         print(f"report: error: cannot write to {out_dir}: {e}", file=sys.stderr)

@@ -407,7 +407,9 @@ def flicker_chart(scene, runs, path):
     fig, ax = _bar_figure(len(rows))
     values = [v for _, v in rows]
     ax.barh(range(len(rows)), values, height=0.65, color="#8e44ad")
-    _annotate_ends(ax, [f"{v:.4f}" for v in values], values)
+    # Values span orders of magnitude (stabilized cascades ~1e-5, SDSM ~1e-2): three significant
+    # digits, so a small one does not print as 0.0000.
+    _annotate_ends(ax, [f"{v:.3g}" for v in values], values)
     _row_axis(ax, [labels[r.key] for r, _ in rows])
     ax.set_xlim(0, max(max(values) * 1.18, 1e-4))
     ax.set_xlabel("flicker: mean |Δ shadow term| per frame at a fixed world point (0 = stable)")
@@ -424,13 +426,25 @@ def flicker_chart(scene, runs, path):
 
 PASS_COLORS = [("gpu_ms.shadow", "shadow passes", "#34495e"), ("gpu_ms.lit", "lit pass", "#5dade2"),
                ("gpu_ms.analysis", "analysis", "#f1c40f")]
+# Passes a technique names beyond those (moment resolve and blur, a depth pre-pass) in this order.
+EXTRA_PASS_COLORS = ["#e67e22", "#16a085", "#c0392b", "#8e44ad", "#7f8c8d"]
+
+
+def pass_styles(runs):
+    """(metric name, legend label, colour) of every GPU pass the runs name."""
+    known = {name for name, _, _ in PASS_COLORS}
+    extra = sorted({n for r in runs for n in r.metrics if n.startswith("gpu_ms.")
+                    and n != "gpu_ms.total" and n not in known})
+    return PASS_COLORS + [(n, n[len("gpu_ms."):], EXTRA_PASS_COLORS[i % len(EXTRA_PASS_COLORS)])
+                          for i, n in enumerate(extra)]
 
 
 def gpu_passes_chart(scene, runs, path):
     left = LeftOut("GPU time per pass")
     rows = []
+    passes = pass_styles(runs)
     for r in runs:
-        parts = [r.metric(name) or 0.0 for name, _, _ in PASS_COLORS]
+        parts = [r.metric(name) or 0.0 for name, _, _ in passes]
         total = r.metric("gpu_ms.total")
         if total is None and not any(parts):
             left.add("not plotted, no gpu_ms", r)
@@ -444,7 +458,7 @@ def gpu_passes_chart(scene, runs, path):
     labels = plain_labels(run_labels(runs))
     fig, ax = _bar_figure(len(rows))
     starts = [0.0] * len(rows)
-    for i, (_, name, color) in enumerate(PASS_COLORS):
+    for i, (_, name, color) in enumerate(passes):
         widths = [parts[i] for _, parts, _, _ in rows]
         if any(widths):
             ax.barh(range(len(rows)), widths, left=starts, height=0.65, color=color, label=name)

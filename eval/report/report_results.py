@@ -46,7 +46,7 @@ METRICS = [
            "5th percentile of texels per pixel: how badly the worst-sampled 5% of pixels fare"),
     Metric("utilization", "utilization", "", "{:.2f}",
            "fraction of shadow texels sampled by at least one pixel (1 = no texel wasted)"),
-    Metric("flicker", "flicker", "", "{:.4f}",
+    Metric("flicker", "flicker", "", "{:.3g}",
            "mean absolute change of the shadow term at the same world point between consecutive "
            "frames on a slow camera pan; the reference has zero"),
     Metric("gpu_ms.shadow", "GPU shadow", "ms", "{:.2f}",
@@ -68,6 +68,8 @@ METRIC_BY_NAME = {m.name: m for m in METRICS}
 
 IMAGE_KINDS = [("color", "color"), ("error", "error heat map"),
                ("texel_density", "texel density"), ("reference", "reference")]
+# Bench's picture of where a run's first frame differs from the same run on the first backend.
+BACKEND_DIFF = "backend_diff"
 
 
 @dataclass
@@ -85,6 +87,14 @@ class Run:
     series: dict = field(default_factory=dict)   # name -> list of float
     images: dict = field(default_factory=dict)   # kind -> absolute Path (may not exist)
     notes: list = field(default_factory=list)
+    # Validation layers / GL debug output: None where the results do not say (older files).
+    validation_enabled: bool = None
+    validation_errors: int = None
+    last_validation_error: str = None
+    # {"against": backend, "pixels", "differing_pixels", "max_difference"} or None.
+    cross_backend: dict = None
+    # The parameters the bench was given (the rest are defaults); None where the file does not say.
+    params_given: dict = None
 
     @property
     def params_key(self):
@@ -166,6 +176,11 @@ def parse_run(raw, source, index):
               params={str(k): _param_text(v) for k, v in params.items()},
               metrics={}, source=Path(source), index=index)
     short = run.where
+    given = raw.get("params_given")
+    if isinstance(given, dict):
+        run.params_given = {str(k): _param_text(v) for k, v in given.items()}
+    elif given is not None:
+        run.notes.append(f"{short}: \"params_given\" is not an object; ignored")
     _flatten_metrics(raw["metrics"], "", run.metrics, run.notes, short)
 
     device = raw.get("device")
@@ -199,7 +214,48 @@ def parse_run(raw, source, index):
                 run.notes.append(f"{short}: image \"{kind}\" is not a path; ignored")
     elif images is not None:
         run.notes.append(f"{short}: \"images\" is not an object; ignored")
+    _parse_checks(raw.get("checks"), run, short)
+    _parse_cross_backend(raw.get("cross_backend"), run, short)
     return run
+
+
+def _count(value):
+    number = _number(value)
+    return int(number) if number is not None and number >= 0 and number.is_integer() else None
+
+
+def _parse_checks(checks, run, short):
+    if checks is None:
+        return
+    if not isinstance(checks, dict):
+        run.notes.append(f"{short}: \"checks\" is not an object; ignored")
+        return
+    enabled = checks.get("validation_enabled")
+    if isinstance(enabled, bool):
+        run.validation_enabled = enabled
+    if "validation_errors" in checks:
+        run.validation_errors = _count(checks["validation_errors"])
+        if run.validation_errors is None:
+            run.notes.append(f"{short}: checks.validation_errors = "
+                             f"{json.dumps(checks['validation_errors'])} is not a count; ignored")
+    message = checks.get("last_validation_error")
+    if isinstance(message, str) and message:
+        run.last_validation_error = message
+
+
+def _parse_cross_backend(cross, run, short):
+    if cross is None:
+        return
+    parsed = None
+    if isinstance(cross, dict) and isinstance(cross.get("against"), str):
+        counts = {k: _count(cross.get(k)) for k in ("pixels", "differing_pixels", "max_difference")}
+        if all(v is not None for v in counts.values()) \
+                and counts["differing_pixels"] <= counts["pixels"]:
+            parsed = dict(counts, against=cross["against"])
+    if parsed is None:
+        run.notes.append(f"{short}: \"cross_backend\" {json.dumps(cross)} is not a comparison "
+                         "(against, pixels, differing_pixels, max_difference); ignored")
+    run.cross_backend = parsed
 
 
 def load_results(path):
@@ -292,9 +348,10 @@ def technique_labels(runs):
     With many variants (sweeps of several parameters merged into one page) a parameter is named
     only where it differs from its most common value, which for one-parameter-at-a-time sweeps
     is the default: "csm cascades=1 resolution=2048" rather than every swept parameter."""
-    variants = {}
+    variants, given = {}, {}
     for run in runs:
         variants.setdefault(run.technique, {})[run.params_key] = run.params
+        given.setdefault(run.technique, {})[run.params_key] = run.params_given
     labels = {}
     for technique, by_params in variants.items():
         names = sorted({k for params in by_params.values() for k in params}, key=natural_key)
@@ -306,12 +363,27 @@ def technique_labels(runs):
                 counts[params.get(k)] = counts.get(params.get(k), 0) + 1
             # Most frequent value; ties go to the first seen, so the choice is deterministic.
             common[k] = max(counts, key=counts.get)
+        mine = {}
         for params_key, params in by_params.items():
             if len(by_params) > 4:
                 parts = [f"{k}={params[k]}" for k in varying if k in params and params[k] != common[k]]
             else:
                 parts = [f"{k}={params[k]}" for k in varying if k in params]
-            labels[(technique, params_key)] = " ".join([technique] + parts)
+            mine[params_key] = " ".join([technique] + parts)
+        # Where the bench says which parameters it was given, a variant is named by those alone
+        # ("csm filter=msm", not "csm filter=msm kernel=3" beside a 5x5 Gaussian variant), unless
+        # that would name two variants alike.
+        # A technique run in one variant only is named by everything it was given.
+        if all(g is not None for g in given[technique].values()):
+            named = {}
+            for params_key, params in by_params.items():
+                set_here = given[technique][params_key]
+                names = varying if len(by_params) > 1 else sorted(set_here, key=natural_key)
+                parts = [f"{k}={params[k]}" for k in names if k in params and k in set_here]
+                named[params_key] = " ".join([technique] + parts)
+            if len(set(named.values())) == len(named):
+                mine = named
+        labels.update({(technique, k): v for k, v in mine.items()})
     return labels
 
 
@@ -366,17 +438,28 @@ def metric_names(runs):
     return known + extra
 
 
+def _metric(name):
+    """The catalogue entry; a GPU pass a technique names itself (gpu_ms.moments) reads like the
+    known passes."""
+    metric = METRIC_BY_NAME.get(name)
+    if metric is None and name.startswith("gpu_ms."):
+        pass_name = name[len("gpu_ms."):]
+        metric = Metric(name, f"GPU {pass_name}", "ms", "{:.2f}",
+                        f"GPU time of the technique's {pass_name} pass per frame, in ms")
+    return metric
+
+
 def format_metric(name, value):
     if value is None:
         return "–"
-    metric = METRIC_BY_NAME.get(name)
+    metric = _metric(name)
     if metric is None:
         return f"{value:.4g}"
     return metric.fmt.format(value * metric.scale)
 
 
 def metric_heading(name):
-    metric = METRIC_BY_NAME.get(name)
+    metric = _metric(name)
     if metric is None:
         return name
     return f"{metric.heading} ({metric.unit})" if metric.unit else metric.heading

@@ -150,6 +150,29 @@ class LabelTest(unittest.TestCase):
         self.assertEqual(sorted(run_labels(two).values()),
                          ["pcf kernel=3 [gl]", "pcf kernel=3 [vulkan]", "pcf kernel=5 [vulkan]"])
 
+    def test_variants_named_by_the_parameters_they_were_given(self):
+        def csm(filter_, kernel, given):
+            run = make_run("csm", {"filter": filter_, "kernel": kernel, "cascades": "4"})
+            run.params_given = given
+            return run
+        runs = [csm("hw2x2", "3", {}), csm("gauss", "5", {"filter": "gauss", "kernel": "5"}),
+                csm("msm", "3", {"filter": "msm"})]
+        self.assertEqual([technique_labels(runs)[("csm", r.params_key)] for r in runs],
+                         ["csm", "csm filter=gauss kernel=5", "csm filter=msm"])
+        # Alone, a variant is named by everything it was given.
+        self.assertEqual(technique_labels(runs[1:2])[("csm", runs[1].params_key)],
+                         "csm filter=gauss kernel=5")
+        self.assertEqual(technique_labels(runs[:1])[("csm", runs[0].params_key)], "csm")
+        # Without that information every varying parameter is named.
+        for r in runs:
+            r.params_given = None
+        self.assertIn("csm filter=msm kernel=3", technique_labels(runs).values())
+
+    def test_given_parameters_that_name_two_variants_alike_are_not_used(self):
+        a, b = make_run("t", {"a": "1", "b": "2"}), make_run("t", {"a": "1", "b": "3"})
+        a.params_given = b.params_given = {"a": "1"}
+        self.assertEqual(sorted(technique_labels([a, b]).values()), ["t b=2", "t b=3"])
+
     def test_fixture_labels_unique_per_scene(self):
         runs, _ = merge_runs([load_results(VULKAN), load_results(GL)])
         for scene in {r.scene for r in runs}:
@@ -394,6 +417,150 @@ class EndToEndTest(unittest.TestCase):
             result = run_report(empty, "--out", Path(tmp, "out"))
             self.assertEqual(result.returncode, 0, result.stderr)
             self.assertIn("holds no runs", Path(tmp, "out", "index.html").read_text())
+
+
+def write_png(path, width, height, rgb=(128, 128, 128)):
+    """A plain RGB PNG of one colour."""
+    def chunk(kind, data):
+        return (struct.pack(">I", len(data)) + kind + data
+                + struct.pack(">I", zlib.crc32(kind + data)))
+    raw = b"".join(b"\x00" + bytes(rgb) * width for _ in range(height))
+    Path(path).parent.mkdir(parents=True, exist_ok=True)
+    Path(path).write_bytes(b"\x89PNG\r\n\x1a\n"
+                           + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 2, 0, 0, 0))
+                           + chunk(b"IDAT", zlib.compress(raw)) + chunk(b"IEND", b""))
+
+
+def demo_runs(tmp, cross=None, checks=None):
+    """Two techniques on two backends, with the images bench writes, as a results file; `cross`
+    maps technique -> the gl run's cross_backend, `checks` (backend, technique) -> checks."""
+    runs = []
+    for technique, params in (("basic", {}), ("csm", {"filter": "gauss"})):
+        for backend in ("vulkan", "gl"):
+            stem = f"s/{technique}-{backend}"
+            images = {"color": f"img/{stem}-color.png", "error": f"img/{stem}-error.png"}
+            for rel in images.values():
+                write_png(Path(tmp, rel), 50, 20)
+            gpu = {"total": 2.0, "moments": 0.75} if technique == "csm" else {"total": 2.0}
+            run = {"scene": "s", "technique": technique, "params": params, "backend": backend,
+                   "device": "dev", "size": [50, 20],
+                   "metrics": {"misclassified_pct": 1.0, "false_lit_pct": 0.5,
+                               "false_shadow_pct": 0.5, "gpu_ms": gpu},
+                   "images": images}
+            if backend == "gl" and cross and technique in cross:
+                run["cross_backend"] = cross[technique]
+                run["images"]["backend_diff"] = f"img/{stem}-vs-vulkan-diff.png"
+                write_png(Path(tmp, run["images"]["backend_diff"]), 50, 24, (200, 30, 30))
+            if checks and (backend, technique) in checks:
+                run["checks"] = checks[(backend, technique)]
+            runs.append(run)
+    path = Path(tmp, "results.json")
+    path.write_text(json.dumps({"runs": runs}))
+    return path
+
+
+def page_of(results, *args):
+    out = results.parent / "report"
+    result = run_report(results, "--out", out, *args)
+    if result.returncode != 0:
+        raise AssertionError(result.stderr)
+    return out, (out / "index.html").read_text(encoding="utf-8")
+
+
+class CrossBackendTest(unittest.TestCase):
+    SAME = {"against": "vulkan", "image": "color", "pixels": 1000, "differing_pixels": 0,
+            "max_difference": 0}
+    DIFFERENT = {"against": "vulkan", "image": "color", "pixels": 1000, "differing_pixels": 12,
+                 "max_difference": 3}
+
+    @classmethod
+    def setUpClass(cls):
+        cls.tmp = tempfile.TemporaryDirectory()
+        results = demo_runs(cls.tmp.name, cross={"basic": cls.SAME, "csm": cls.DIFFERENT})
+        cls.out, cls.html = page_of(results)
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.tmp.cleanup()
+
+    def test_section_shows_both_pictures_the_difference_and_the_counts(self):
+        out, html = self.out, self.html
+        page = references(html)
+        self.assertEqual(html.count("<h3>Cross-backend</h3>"), 1)
+        self.assertIn("<b>1 of 2</b> comparisons of gl against vulkan: bit-identical first "
+                      "frame.", html)
+        self.assertIn("0 of 1,000 pixels differ: <b>bit-identical</b>", html)
+        self.assertIn("12 of 1,000 pixels differ (1.2 %), largest channel difference 3 of "
+                      "255", html)
+        diffs = [src for src in page.images if src.endswith("-diff.png")]
+        self.assertEqual(len(diffs), 2)
+        for src in page.images:
+            png_size(out / src)
+        # Difference images appear in the cross-backend section only, not as an images column.
+        self.assertNotIn("<th>backend_diff</th>", html)
+        # The order of the section: chart, figures, pictures, then the backends compared.
+        order = [html.index(h) for h in ("<h3>Speed vs accuracy</h3>", "<h3>All metrics</h3>",
+                                         "<h3>Images</h3>", "<h3>Cross-backend</h3>",
+                                         "<h3>Cost</h3>")]
+        self.assertEqual(order, sorted(order))
+
+    def test_passes_a_technique_names_itself_are_costed(self):
+        cost = self.html[self.html.index("<h3>Cost</h3>"):]
+        self.assertIn("<th>GPU moments (ms)</th>", cost)
+        self.assertIn('<td class="num">0.75</td>', cost)
+
+    def test_bit_identical_runs_share_one_images_row(self):
+        html = self.html
+        images = html[html.index("<h3>Images</h3>"):html.index("<h3>Cross-backend</h3>")]
+        self.assertIn("basic [vulkan = gl]", images)
+        self.assertNotIn("basic [gl]", images)
+        # Different pictures keep a row per backend.
+        self.assertIn("csm [vulkan]", images)
+        self.assertIn("csm [gl]", images)
+
+    def test_malformed_comparison_is_noted_and_left_out(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            bad = dict(self.DIFFERENT, differing_pixels=5000)   # more than there are pixels
+            results = demo_runs(tmp, cross={"basic": {"against": "vulkan"}, "csm": bad})
+            _, html = page_of(results)
+            self.assertEqual(html.count("is not a comparison"), 2)
+            self.assertNotIn("pixels differ", html)
+            self.assertIn("basic [gl]", html)
+
+
+class ValidationTest(unittest.TestCase):
+    def test_clean_validated_runs_are_stated_and_the_intro_escaped(self):
+        on = {"validation_enabled": True, "validation_errors": 0}
+        with tempfile.TemporaryDirectory() as tmp:
+            checks = {(b, t): on for b in ("vulkan", "gl") for t in ("basic", "csm")}
+            _, html = page_of(demo_runs(tmp, checks=checks), "--title", "Demo", "--intro",
+                              "4 <techniques>")
+            self.assertIn("on in 4 of 4 runs; 0 errors.", html)
+            self.assertNotIn('class="error"', html)
+            self.assertIn("<h1>Demo</h1>\n<p>4 &lt;techniques&gt;</p>", html)
+
+    def test_errors_are_shown_with_the_run_and_the_message(self):
+        on = {"validation_enabled": True, "validation_errors": 0}
+        failed = {"validation_enabled": True, "validation_errors": 3,
+                  "last_validation_error": "vkCmdDraw: <bad> descriptor"}
+        with tempfile.TemporaryDirectory() as tmp:
+            checks = {("vulkan", "basic"): on, ("gl", "basic"): on, ("vulkan", "csm"): failed,
+                      ("gl", "csm"): on}
+            _, html = page_of(demo_runs(tmp, checks=checks))
+            self.assertIn('class="error"', html)
+            self.assertIn("3 validation error(s) in 1 run(s)", html)
+            self.assertIn("csm filter=gauss on vulkan: 3 error(s); last: "
+                          "<code>vkCmdDraw: &lt;bad&gt; descriptor</code>", html)
+            self.assertLess(html.index('class="error"'), html.index("<h2>Scene: s</h2>"))
+
+    def test_runs_without_validation_say_so_and_old_files_say_nothing(self):
+        off = {"validation_enabled": False, "validation_errors": 0}
+        with tempfile.TemporaryDirectory() as tmp:
+            _, html = page_of(demo_runs(tmp, checks={("vulkan", "basic"): off}))
+            self.assertIn("on in 0 of 1 runs (off:", html)
+        with tempfile.TemporaryDirectory() as tmp:
+            _, html = page_of(demo_runs(tmp))
+            self.assertNotIn("Validation (", html)
 
 
 if __name__ == "__main__":

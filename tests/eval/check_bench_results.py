@@ -64,6 +64,23 @@ def main(path, expected_runs):
             image = path.parent / run["images"].get(kind, "")
             if not image.is_file():
                 fail(f"{where}: image {kind} not found: {image}")
+        if not isinstance(run.get("params_given"), dict):
+            fail(f"{where}: \"params_given\" missing or not an object")
+        if not isinstance(run["checks"].get("validation_enabled"), bool):
+            fail(f"{where}: checks.validation_enabled missing or not a bool")
+        # Every backend after the first is compared with the first one's picture.
+        cross = run.get("cross_backend")
+        first = runs[0]["backend"]
+        if (cross is None) != (run["backend"] == first):
+            fail(f"{where}: cross_backend {cross!r} on backend {run['backend']} (first: {first})")
+        if cross is not None:
+            w, h = run["size"]
+            if cross.get("against") != first or cross.get("pixels") != w * h \
+                    or not 0 <= cross.get("differing_pixels", -1) <= w * h \
+                    or not 0 <= cross.get("max_difference", -1) <= 255:
+                fail(f"{where}: cross_backend {cross!r}")
+            if not (path.parent / run["images"].get("backend_diff", "")).is_file():
+                fail(f"{where}: no backend_diff image")
     print(f"check_bench_results: {len(runs)} runs OK")
 
 
