@@ -9,7 +9,7 @@
 //   1. CompileOptions::cacheDir, if set;
 //   2. else $SHADOWPORT_SHADER_CACHE, if set (`./shadowport` sets it to build/shader-cache);
 //   3. else nowhere on disk: compiled shaders are kept in memory for the life of the process.
-// The library never writes under $HOME or $XDG_CACHE_HOME on its own.
+// The toolchain never writes under $HOME or $XDG_CACHE_HOME on its own.
 //
 // Two interfaces: CompileFile/CompileSource (throw CompileError), and Compile/CompileFromFile,
 // D3DCompile's and D3DCompileFromFile's shape (HRESULT, Blob out-pointers), for ports.
