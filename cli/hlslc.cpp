@@ -1,5 +1,6 @@
-// `shadowport hlslc`: fxc/dxc-style front end to the HLSL toolchain, for checking what of an
-// existing D3D11 shader ports:  shadowport hlslc shadow.hlsl -T ps_5_0 -E PSMain -D PCF=1 -I inc -Fo out
+// `shadowport hlslc`: fxc-style front end to the HLSL toolchain, for checking what of an existing
+// D3D11 shader ports:  shadowport hlslc shadow.hlsl /T ps_4_0 /E PSMain /D PCF=1 /I inc /Zpr /Fo out
+// Options take fxc's spellings with '-' or '/'; values follow attached (-Tps_5_0) or separately.
 #include <cstdio>
 #include <filesystem>
 #include <sp/hlsl/compiler.h>
@@ -8,65 +9,142 @@
 #include "cli.h"
 
 namespace sp::cli {
+namespace {
 
-static void Usage() {
-  std::fprintf(stderr,
-               "usage: shadowport hlslc <file.hlsl> -T vs_5_0|ps_5_0|cs_5_0 [-E entry] [-D NAME[=VALUE]]... [-I dir]... "
-               "[-Fo out] [--no-cache]\n"
-               "writes out.spv (SPIR-V for Vulkan), out.glsl (GLSL 4.50 for OpenGL) and out.json (reflection)\n");
+// fxc switches that only set a COMPILE_* bit (see sp/hlsl/compiler.h for what each one does).
+struct FlagSwitch {
+  const char* name;
+  uint32_t bits;
+};
+constexpr FlagSwitch kFlagSwitches[] = {
+    {"Zi", hlsl::COMPILE_DEBUG},
+    {"Vd", hlsl::COMPILE_SKIP_VALIDATION},
+    {"Od", hlsl::COMPILE_SKIP_OPTIMIZATION},
+    {"Zpr", hlsl::COMPILE_PACK_MATRIX_ROW_MAJOR},
+    {"Zpc", hlsl::COMPILE_PACK_MATRIX_COLUMN_MAJOR},
+    {"Gpp", hlsl::COMPILE_PARTIAL_PRECISION},
+    {"Op", hlsl::COMPILE_NO_PRESHADER},
+    {"Gfa", hlsl::COMPILE_AVOID_FLOW_CONTROL},
+    {"Gfp", hlsl::COMPILE_PREFER_FLOW_CONTROL},
+    {"Ges", hlsl::COMPILE_ENABLE_STRICTNESS},
+    {"Gec", hlsl::COMPILE_ENABLE_BACKWARDS_COMPATIBILITY},
+    {"Gis", hlsl::COMPILE_IEEE_STRICTNESS},
+    {"O0", hlsl::COMPILE_OPTIMIZATION_LEVEL0},
+    {"O1", hlsl::COMPILE_OPTIMIZATION_LEVEL1},
+    {"O2", hlsl::COMPILE_OPTIMIZATION_LEVEL2},
+    {"O3", hlsl::COMPILE_OPTIMIZATION_LEVEL3},
+    {"WX", hlsl::COMPILE_WARNINGS_ARE_ERRORS},
+    {"res_may_alias", hlsl::COMPILE_RESOURCES_MAY_ALIAS},
+    {"all_resources_bound", hlsl::COMPILE_ALL_RESOURCES_BOUND},
+    {"enable_unbounded_descriptor_tables", hlsl::COMPILE_ENABLE_UNBOUNDED_DESCRIPTOR_TABLES},
+};
+constexpr uint32_t kOptimizationLevelBits = hlsl::COMPILE_OPTIMIZATION_LEVEL2;  // both level bits
+const char* const kValueOptions[] = {"Fo", "E", "T", "D", "I"};
+
+std::string ValidOptions() {
+  std::string s = "-T <target>, -E <entry>, -D <name>[=<value>], -I <dir>, -Fo <out>, -nologo";
+  for (const FlagSwitch& f : kFlagSwitches) s += std::string(", -") + f.name;
+  return s + ", --no-cache, --help (each also as /option)";
 }
 
-int RunHlslc(const std::vector<std::string>& argv) {
+void Usage() {
+  std::fprintf(stderr,
+               "usage: shadowport hlslc <file.hlsl> -T <target> [-E entry] [-D NAME[=VALUE]]... [-I dir]... [-Fo out] [fxc flags]\n"
+               "targets: %s\n"
+               "options: %s\n"
+               "writes out.spv (SPIR-V for Vulkan), out.glsl (GLSL 4.50 for OpenGL) and out.json (reflection)\n",
+               hlsl::ValidTargets(), ValidOptions().c_str());
+}
+
+struct Command {
   std::string file, entry = "main", target, out;
   hlsl::CompileOptions opt;
-  auto value = [&](size_t& i, const std::string& flag) -> std::string {
-    const std::string& a = argv[i];
-    if (a.size() > flag.size()) return a.substr(flag.size());  // -DNAME, -Idir
-    if (i + 1 >= argv.size()) throw std::invalid_argument(flag + " needs a value");
-    return argv[++i];
-  };
+  bool help = false;
+};
+
+// Applies the option `body` (the argument without its '-' or '/'); returns false when it is not
+// an option hlslc knows.
+bool ApplyOption(const std::vector<std::string>& argv, size_t& i, const std::string& body, Command& c) {
+  if (body == "nologo") return true;  // hlslc prints no banner anyway
+  if (body == "no-cache" || body == "-no-cache") {
+    c.opt.useCache = false;
+    return true;
+  }
+  if (body == "h" || body == "-help" || body == "?") {
+    c.help = true;
+    return true;
+  }
+  for (const FlagSwitch& f : kFlagSwitches) {
+    if (body != f.name) continue;
+    if (f.bits == 0 || (f.bits & kOptimizationLevelBits) == f.bits) c.opt.flags1 &= ~kOptimizationLevelBits;  // the last -O wins
+    c.opt.flags1 |= f.bits;
+    return true;
+  }
+  for (const char* v : kValueOptions) {
+    std::string flag = v;
+    if (body.rfind(flag, 0) != 0) continue;
+    std::string value;
+    if (body.size() > flag.size()) {
+      value = body.substr(flag.size());  // -DNAME, -Idir
+    } else {
+      if (i + 1 >= argv.size()) throw std::invalid_argument("-" + flag + " needs a value");
+      value = argv[++i];
+    }
+    if (flag == "T") c.target = value;
+    else if (flag == "E") c.entry = value;
+    else if (flag == "Fo") c.out = value;
+    else if (flag == "I") c.opt.includeDirs.push_back(value);
+    else {
+      size_t eq = value.find('=');
+      c.opt.defines.push_back({value.substr(0, eq), eq == std::string::npos ? "" : value.substr(eq + 1)});
+    }
+    return true;
+  }
+  return false;
+}
+
+Command Parse(const std::vector<std::string>& argv) {
+  Command c;
   for (size_t i = 0; i < argv.size(); ++i) {
     const std::string& a = argv[i];
-    if (a == "-h" || a == "--help") {
-      Usage();
-      return 0;
-    } else if (a.rfind("-T", 0) == 0) {
-      target = value(i, "-T");
-    } else if (a.rfind("-E", 0) == 0) {
-      entry = value(i, "-E");
-    } else if (a.rfind("-Fo", 0) == 0) {
-      out = value(i, "-Fo");
-    } else if (a.rfind("-D", 0) == 0) {
-      std::string d = value(i, "-D");
-      size_t eq = d.find('=');
-      opt.defines.push_back({d.substr(0, eq), eq == std::string::npos ? "" : d.substr(eq + 1)});
-    } else if (a.rfind("-I", 0) == 0) {
-      opt.includeDirs.push_back(value(i, "-I"));
-    } else if (a == "--no-cache") {
-      opt.useCache = false;
-    } else if (!a.empty() && a[0] == '-') {
-      Usage();
-      throw std::invalid_argument("unknown option " + a);
-    } else if (file.empty()) {
-      file = a;
-    } else {
-      throw std::invalid_argument("more than one input file (" + file + ", " + a + ")");
+    bool dash = a.size() > 1 && a[0] == '-';
+    // "/Zpr" is an option; "/home/me/shader.hlsl" (an existing path, or anything unknown with a
+    // second '/') is the input file.
+    bool slash = a.size() > 1 && a[0] == '/' && !std::filesystem::exists(a);
+    if (dash || slash) {
+      if (ApplyOption(argv, i, a.substr(1), c)) continue;
+      if (dash || a.find('/', 1) == std::string::npos) throw std::invalid_argument("unknown option " + a + " (valid: " + ValidOptions() + ")");
     }
+    if (!c.file.empty()) throw std::invalid_argument("more than one input file (" + c.file + ", " + a + ")");
+    c.file = a;
   }
-  if (file.empty() || target.empty()) {
+  return c;
+}
+
+}  // namespace
+
+int RunHlslc(const std::vector<std::string>& argv) {
+  Command c = Parse(argv);
+  if (c.help) {
+    Usage();
+    return 0;
+  }
+  if (c.file.empty() || c.target.empty()) {
     Usage();
     throw std::invalid_argument("an input file and -T are required");
   }
-  opt.target = target;
-  opt.entryPoint = entry;
-  std::filesystem::path base = out.empty() ? std::filesystem::path(file).replace_extension("") : std::filesystem::path(out);
+  c.opt.target = c.target;
+  c.opt.entryPoint = c.entry;
+  std::filesystem::path base = c.out.empty() ? std::filesystem::path(c.file).replace_extension("") : std::filesystem::path(c.out);
   std::string ext = base.extension().string();
   if (ext == ".cso" || ext == ".spv" || ext == ".fxo" || ext == ".bin") base.replace_extension("");
-  ShaderBytecode b = hlsl::CompileFile(file, opt);
+  std::vector<hlsl::Diagnostic> warnings;
+  ShaderBytecode b = hlsl::CompileFile(c.file, c.opt, &warnings);
+  if (!warnings.empty()) std::fprintf(stderr, "%s\n", hlsl::FormatDiagnostics(warnings, "warning").c_str());
   hlsl::WriteCompiledFiles(base, b);
-  std::printf("%s: %s %s -> %s.spv (%zu words), %s.glsl, %s.json (%zu cbuffers, %zu resources)\n", file.c_str(), target.c_str(), entry.c_str(),
-              base.string().c_str(), b.spirv.size(), base.string().c_str(), base.string().c_str(), b.reflection.cbuffers.size(),
-              b.reflection.resources.size());
+  std::printf("%s: %s %s -> %s.spv (%zu words), %s.glsl, %s.json (%zu cbuffers, %zu resources)\n", c.file.c_str(), c.target.c_str(),
+              c.entry.c_str(), base.string().c_str(), b.spirv.size(), base.string().c_str(), base.string().c_str(),
+              b.reflection.cbuffers.size(), b.reflection.resources.size());
   return 0;
 }
 

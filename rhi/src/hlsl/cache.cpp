@@ -4,6 +4,8 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <mutex>
+#include <unordered_map>
 #include <sstream>
 #include <unistd.h>
 
@@ -57,11 +59,10 @@ std::string HexHash(uint64_t h) {
   return buf;
 }
 
+// A library writes to the user's disk only where it was told to: no $HOME fallback.
 fs::path DefaultCacheDir() {
   if (const char* e = std::getenv("SHADOWPORT_SHADER_CACHE"); e && *e) return e;
-  if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x) return fs::path(x) / "shadowport" / "shaders";
-  if (const char* h = std::getenv("HOME"); h && *h) return fs::path(h) / ".cache" / "shadowport" / "shaders";
-  return fs::temp_directory_path() / "shadowport-shaders";
+  return {};
 }
 
 CacheStats GetCacheStats() { return {gHits.load(), gMisses.load()}; }
@@ -83,7 +84,41 @@ void WriteCompiledFiles(const fs::path& base, const ShaderBytecode& b) {
   WriteBytecodeFiles(base, b, nullptr);
 }
 
-std::optional<ShaderBytecode> CacheLoad(const fs::path& dir, const std::string& key) {
+namespace {
+
+json WarningsToJson(const std::vector<Diagnostic>& warnings) {
+  json a = json::array();
+  for (const Diagnostic& d : warnings) a.push_back({{"file", d.file}, {"line", d.line}, {"message", d.message}});
+  return a;
+}
+
+std::vector<Diagnostic> WarningsFromJson(const json& a) {
+  std::vector<Diagnostic> out;
+  for (const json& d : a) out.push_back({d.at("file").get<std::string>(), d.at("line").get<int>(), d.at("message").get<std::string>()});
+  return out;
+}
+
+bool DependenciesUnchanged(const std::vector<Dependency>& deps) {
+  for (const Dependency& d : deps) {
+    std::string content;
+    if (!ReadAll(d.path, &content) || Hash64(content.data(), content.size()) != d.hash) return false;
+  }
+  return true;
+}
+
+struct MemoryEntry {
+  CachedShader shader;
+  std::vector<Dependency> deps;
+};
+std::mutex gMemoryMutex;
+std::unordered_map<std::string, MemoryEntry> gMemory;
+// A process compiles a bounded set of shaders; the bound only guards against runaway growth
+// (e.g. a tool compiling generated variants forever).
+constexpr size_t kMemoryEntries = 1024;
+
+}  // namespace
+
+std::optional<CachedShader> CacheLoad(const fs::path& dir, const std::string& key) {
   std::string js, spv, glsl;
   if (!ReadAll(dir / (key + ".json"), &js) || !ReadAll(dir / (key + ".spv"), &spv) || !ReadAll(dir / (key + ".glsl"), &glsl)) return std::nullopt;
   if (spv.size() % 4 || spv.empty()) return std::nullopt;
@@ -91,27 +126,50 @@ std::optional<ShaderBytecode> CacheLoad(const fs::path& dir, const std::string& 
     std::vector<uint32_t> words(spv.size() / 4);
     std::memcpy(words.data(), spv.data(), spv.size());
     json extra;
-    ShaderBytecode b = BytecodeFromJson(js, std::move(words), std::move(glsl), &extra);
+    CachedShader s;
+    s.bytecode = BytecodeFromJson(js, std::move(words), std::move(glsl), &extra);
+    std::vector<Dependency> deps;
     for (const json& d : extra.at("dependencies")) {
-      std::string content;
-      if (!ReadAll(d.at("path").get<std::string>(), &content)) return std::nullopt;
-      if (HexHash(Hash64(content.data(), content.size())) != d.at("hash").get<std::string>()) return std::nullopt;
+      uint64_t hash = std::stoull(d.at("hash").get<std::string>(), nullptr, 16);
+      deps.push_back({d.at("path").get<std::string>(), hash});
     }
+    if (!DependenciesUnchanged(deps)) return std::nullopt;
+    s.warnings = WarningsFromJson(extra.at("warnings"));
     ++gHits;
-    return b;
+    return s;
   } catch (const std::exception&) {
     return std::nullopt;  // a stale or damaged entry is simply recompiled
   }
 }
 
-void CacheStore(const fs::path& dir, const std::string& key, const ShaderBytecode& b, const std::vector<Dependency>& deps) {
+void CacheStore(const fs::path& dir, const std::string& key, const CachedShader& s, const std::vector<Dependency>& deps) {
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec) return;  // a read-only cache location only costs compile time
   json extra;
   extra["dependencies"] = json::array();
   for (const Dependency& d : deps) extra["dependencies"].push_back({{"path", d.path}, {"hash", HexHash(d.hash)}});
-  WriteBytecodeFiles(dir / key, b, &extra);
+  extra["warnings"] = WarningsToJson(s.warnings);
+  WriteBytecodeFiles(dir / key, s.bytecode, &extra);
+}
+
+std::optional<CachedShader> MemoryCacheLoad(const std::string& key) {
+  MemoryEntry e;
+  {
+    std::lock_guard lock(gMemoryMutex);
+    auto it = gMemory.find(key);
+    if (it == gMemory.end()) return std::nullopt;
+    e = it->second;
+  }
+  if (!DependenciesUnchanged(e.deps)) return std::nullopt;
+  ++gHits;
+  return std::move(e.shader);
+}
+
+void MemoryCacheStore(const std::string& key, const CachedShader& s, const std::vector<Dependency>& deps) {
+  std::lock_guard lock(gMemoryMutex);
+  if (gMemory.size() >= kMemoryEntries) gMemory.erase(gMemory.begin());
+  gMemory[key] = {s, deps};
 }
 
 }  // namespace sp::hlsl

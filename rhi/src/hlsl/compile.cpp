@@ -5,6 +5,7 @@
 #include <glslang/SPIRV/GlslangToSpv.h>
 #include <glslang/build_info.h>
 
+#include <cstring>
 #include <fstream>
 #include <mutex>
 #include <regex>
@@ -20,30 +21,75 @@
 namespace sp::hlsl {
 namespace fs = std::filesystem;
 
-static std::string FormatDiagnostics(const std::vector<Diagnostic>& d, const std::string& fallback) {
-  if (d.empty()) return fallback;
+std::string FormatDiagnostics(const std::vector<Diagnostic>& d, const char* severity) {
   std::string s;
   for (size_t i = 0; i < d.size(); ++i) {
     if (i) s += "\n";
     s += d[i].file;
     if (d[i].line) s += ":" + std::to_string(d[i].line);
-    s += ": error: " + d[i].message;
+    s += std::string(": ") + severity + ": " + d[i].message;
   }
   return s;
 }
 
 CompileError::CompileError(std::string call, std::string object, std::vector<Diagnostic> diagnostics, std::string log)
-    : Error(ErrorId::SHADER_COMPILE_FAILED, std::move(call), std::move(object), FormatDiagnostics(diagnostics, log)),
+    : Error(ErrorId::SHADER_COMPILE_FAILED, std::move(call), std::move(object),
+            diagnostics.empty() ? log : FormatDiagnostics(diagnostics, "error")),
       diagnostics_(std::move(diagnostics)),
       log_(std::move(log)) {}
 
+namespace {
+struct TargetName {
+  const char* name;
+  ShaderStage stage;
+};
+// Shader Model 4 targets compile as their 5.0 twin: SPIR-V has no lower feature level to map to.
+constexpr TargetName kTargets[] = {
+    {"vs_4_0", ShaderStage::Vertex},  {"vs_4_1", ShaderStage::Vertex},   {"vs_5_0", ShaderStage::Vertex},
+    {"ps_4_0", ShaderStage::Pixel},   {"ps_4_1", ShaderStage::Pixel},    {"ps_5_0", ShaderStage::Pixel},
+    {"cs_4_0", ShaderStage::Compute}, {"cs_4_1", ShaderStage::Compute},  {"cs_5_0", ShaderStage::Compute},
+    {"gs_4_0", ShaderStage::Geometry}, {"gs_4_1", ShaderStage::Geometry}, {"gs_5_0", ShaderStage::Geometry},
+};
+}  // namespace
+
 bool ParseTarget(std::string_view target, ShaderStage* stage) {
-  if (target == "vs_5_0") *stage = ShaderStage::Vertex;
-  else if (target == "ps_5_0") *stage = ShaderStage::Pixel;
-  else if (target == "cs_5_0") *stage = ShaderStage::Compute;
-  else if (target == "gs_5_0") *stage = ShaderStage::Geometry;
-  else return false;
-  return true;
+  for (const TargetName& t : kTargets)
+    if (target == t.name) {
+      *stage = t.stage;
+      return true;
+    }
+  return false;
+}
+
+const char* ValidTargets() {
+  return "vs_4_0, vs_4_1, vs_5_0, ps_4_0, ps_4_1, ps_5_0, cs_4_0, cs_4_1, cs_5_0, gs_4_0, gs_4_1, gs_5_0";
+}
+
+static std::string UnknownTargetMessage(const std::string& target) {
+  std::string msg = "unknown target '" + target + "' (valid: " + ValidTargets() + ")";
+  if (target.size() > 3 && target[2] == '_' && target[3] >= '1' && target[3] <= '3')
+    msg += "; Shader Model 3 and older are Direct3D 9 targets";
+  else if (target.size() > 3 && target[2] == '_' && target[3] == '6')
+    msg += "; Shader Model 6 (DXIL) is not supported";
+  else if (target.rfind("hs_", 0) == 0 || target.rfind("ds_", 0) == 0)
+    msg += "; hull and domain shaders are not supported";
+  else if (target.rfind("lib_", 0) == 0 || target.rfind("fx_", 0) == 0 || target.rfind("tx_", 0) == 0)
+    msg += "; libraries, effects and texture shaders are not supported";
+  return msg;
+}
+
+// "" when `flags` is a valid combination of COMPILE_* bits, else why not.
+std::string CheckCompileFlags(uint32_t flags) {
+  if (flags & ~kKnownCompileFlags) {
+    char hex[16];
+    std::snprintf(hex, sizeof hex, "0x%x", flags & ~kKnownCompileFlags);
+    return std::string("unknown compile flags ") + hex + " (flags1 takes the COMPILE_* values, D3DCOMPILE_* of fxc)";
+  }
+  if ((flags & COMPILE_PACK_MATRIX_ROW_MAJOR) && (flags & COMPILE_PACK_MATRIX_COLUMN_MAJOR))
+    return "COMPILE_PACK_MATRIX_ROW_MAJOR (-Zpr) and COMPILE_PACK_MATRIX_COLUMN_MAJOR (-Zpc) exclude each other";
+  if ((flags & COMPILE_AVOID_FLOW_CONTROL) && (flags & COMPILE_PREFER_FLOW_CONTROL))
+    return "COMPILE_AVOID_FLOW_CONTROL (-Gfa) and COMPILE_PREFER_FLOW_CONTROL (-Gfp) exclude each other";
+  return {};
 }
 
 namespace {
@@ -129,6 +175,30 @@ std::vector<Diagnostic> ParseGlslangLog(const std::string& log, const std::strin
   return out;
 }
 
+// "WARNING: path/file.hlsl:12: 'foobar' : unrecognized attribute" -> {path/file.hlsl, 12, ...}.
+// glslang also warns that fxc's hint attributes [fastopt] and [allow_uav_condition] (loops) and
+// [forcecase] and [call] (switches) "do not apply"; fxc accepts them, so those are dropped
+// rather than failing valid D3D code under -WX.
+std::vector<Diagnostic> ParseGlslangWarnings(const std::string& log, const std::string& defaultFile) {
+  std::vector<Diagnostic> out;
+  static const std::regex withLine(R"(^WARNING: (.+?):(\d+): (.*?)\s*$)");
+  static const std::regex noLine(R"(^WARNING: (.*?)\s*$)");
+  std::istringstream in(log);
+  std::string line;
+  while (std::getline(in, line)) {
+    std::smatch m;
+    Diagnostic d;
+    if (std::regex_match(line, m, withLine)) d = {m[1].str(), std::stoi(m[2].str()), m[3].str()};
+    else if (std::regex_match(line, m, noLine)) d = {defaultFile, 0, m[1].str()};
+    else continue;
+    if (d.message.find("attribute does not apply to a loop") != std::string::npos ||
+        d.message.find("attribute does not apply to a switch") != std::string::npos)
+      continue;
+    out.push_back(std::move(d));
+  }
+  return out;
+}
+
 // glslang's HLSL front end wraps the entry point in a function that copies the stage inputs into
 // temporaries and passes them to the user's function. For some inputs it declares the input but
 // never copies it (glslang 12: a scalar `uint c : SV_Coverage` parameter), so the shader reads an
@@ -170,7 +240,7 @@ class UnconnectedInputs : public glslang::TIntermTraverser {
 };
 
 std::vector<uint32_t> RunGlslang(const std::string& source, const std::string& fileName, const CompileOptions& opt, ShaderStage stage,
-                                 const std::string& entry, Includer& includer) {
+                                 const std::string& entry, Includer& includer, std::vector<Diagnostic>* warnings) {
   std::call_once(gInitOnce, [] { glslang::InitializeProcess(); });
   EShLanguage lang = LanguageOf(stage);
   glslang::TShader shader(lang);
@@ -179,6 +249,10 @@ std::vector<uint32_t> RunGlslang(const std::string& source, const std::string& f
   int len = int(source.size());
   shader.setStringsWithLengthsAndNames(&src, &len, &name, 1);
   std::string preamble;
+  // fxc's -Zpr/-Zpc set the packing of matrices declared without row_major/column_major; the
+  // pragma does the same in glslang (and a pack_matrix pragma in the source still wins after it).
+  if (opt.flags1 & COMPILE_PACK_MATRIX_ROW_MAJOR) preamble += "#pragma pack_matrix(row_major)\n";
+  if (opt.flags1 & COMPILE_PACK_MATRIX_COLUMN_MAJOR) preamble += "#pragma pack_matrix(column_major)\n";
   for (const Define& d : opt.defines) preamble += "#define " + d.name + " " + (d.value.empty() ? std::string("1") : d.value) + "\n";
   shader.setPreamble(preamble.c_str());
   shader.setEntryPoint(entry.c_str());
@@ -206,6 +280,7 @@ std::vector<uint32_t> RunGlslang(const std::string& source, const std::string& f
     std::string log = std::string(shader.getInfoLog()) + shader.getInfoDebugLog();
     throw CompileError("glslang", fileName + ":" + entry, ParseGlslangLog(log, fileName), log);
   }
+  *warnings = ParseGlslangWarnings(std::string(shader.getInfoLog()), fileName);
   glslang::TProgram program;
   program.addShader(&shader);
   if (!program.link(messages) || !program.mapIO()) {
@@ -278,10 +353,14 @@ void Validate(const std::vector<uint32_t>& spirv, const std::string& fileName, c
   }
 }
 
-std::string CacheKey(const std::string& source, const std::string& fileName, const CompileOptions& opt, const std::string& entry) {
+// SM4 targets share their SM5 twin's entries (same compilation); only the flags that change
+// the output are part of the key (-WX does not: warnings are stored with each entry).
+std::string CacheKey(const std::string& source, const std::string& fileName, const CompileOptions& opt, ShaderStage stage,
+                     const std::string& entry) {
   std::string k = std::string(kToolchainRevision) + "|glslang " + std::to_string(GLSLANG_VERSION_MAJOR) + "." +
-                  std::to_string(GLSLANG_VERSION_MINOR) + "." + std::to_string(GLSLANG_VERSION_PATCH) + "|" + opt.target + "|" + entry + "|" +
-                  fs::absolute(fileName).lexically_normal().string();
+                  std::to_string(GLSLANG_VERSION_MINOR) + "." + std::to_string(GLSLANG_VERSION_PATCH) + "|" +
+                  ShaderStagePrefix(stage) + "|" + entry + "|" + fs::absolute(fileName).lexically_normal().string();
+  k += "|F" + std::to_string(opt.flags1 & kSemanticCompileFlags);
   for (const Define& d : opt.defines) k += "|D" + d.name + "=" + d.value;
   for (const fs::path& p : opt.includeDirs) k += "|I" + fs::absolute(p).lexically_normal().string();
   uint64_t h = Hash64(k.data(), k.size());
@@ -289,25 +368,44 @@ std::string CacheKey(const std::string& source, const std::string& fileName, con
   return HexHash(h);
 }
 
+// Hands the warnings to the caller, or fails the compile with them under -WX.
+void DeliverWarnings(const std::vector<Diagnostic>& found, const CompileOptions& opt, const std::string& name,
+                     std::vector<Diagnostic>* out) {
+  if (!found.empty() && (opt.flags1 & COMPILE_WARNINGS_ARE_ERRORS)) {
+    std::vector<Diagnostic> errors = found;
+    for (Diagnostic& d : errors) d.message += " (a warning, treated as an error: COMPILE_WARNINGS_ARE_ERRORS / -WX)";
+    throw CompileError("glslang", name, errors, FormatDiagnostics(found, "warning"));
+  }
+  if (out) *out = found;
+}
+
 }  // namespace
 
-ShaderBytecode CompileSource(std::string_view sourceView, const std::string& fileName, const CompileOptions& opt) {
+ShaderBytecode CompileSource(std::string_view sourceView, const std::string& fileName, const CompileOptions& opt,
+                             std::vector<Diagnostic>* warnings) {
   ShaderStage stage;
   std::string entry = opt.entryPoint.empty() ? "main" : opt.entryPoint;
   std::string name = fileName + ":" + entry;
-  if (!ParseTarget(opt.target, &stage))
-    throw CompileError("Compile", name, {{fileName, 0, "unknown target '" + opt.target + "' (use vs_5_0, ps_5_0 or cs_5_0)"}}, "");
+  if (warnings) warnings->clear();
+  if (!ParseTarget(opt.target, &stage)) throw CompileError("Compile", name, {{fileName, 0, UnknownTargetMessage(opt.target)}}, "");
+  if (std::string bad = CheckCompileFlags(opt.flags1); !bad.empty()) throw CompileError("Compile", name, {{fileName, 0, bad}}, "");
   std::string source(sourceView);
 
   fs::path cacheDir = opt.cacheDir.empty() ? DefaultCacheDir() : opt.cacheDir;
-  std::string key = CacheKey(source, fileName, opt, entry);
+  std::string key = CacheKey(source, fileName, opt, stage, entry);
   if (opt.useCache) {
-    if (std::optional<ShaderBytecode> hit = CacheLoad(cacheDir, key)) return *hit;
+    std::optional<CachedShader> hit = cacheDir.empty() ? MemoryCacheLoad(key) : CacheLoad(cacheDir, key);
+    if (hit) {
+      DeliverWarnings(hit->warnings, opt, name, warnings);
+      return std::move(hit->bytecode);
+    }
   }
 
   std::lock_guard lock(gCompileMutex);
   Includer includer(fs::path(fileName).parent_path(), opt.includeDirs);
-  std::vector<uint32_t> spirv = RunGlslang(source, fileName, opt, stage, entry, includer);
+  CachedShader result;
+  std::vector<uint32_t> spirv = RunGlslang(source, fileName, opt, stage, entry, includer, &result.warnings);
+  DeliverWarnings(result.warnings, opt, name, nullptr);
   DropBiasFromGathers(spirv);
   FixAtomicOperandTypes(spirv);
   // Before legalisation: a UAV used only through IncrementCounter/DecrementCounter is removed as
@@ -320,7 +418,7 @@ ShaderBytecode CompileSource(std::string_view sourceView, const std::string& fil
   SetFormatOfReadImages(spirv);
   Validate(spirv, fileName, name);
 
-  ShaderBytecode b;
+  ShaderBytecode& b = result.bytecode;
   b.stage = stage;
   b.sourceName = name;
   b.reflection = Reflect(spirv, stage, entry, name);
@@ -330,17 +428,111 @@ ShaderBytecode CompileSource(std::string_view sourceView, const std::string& fil
   b.glsl = std::move(glsl.glsl);
   b.glBindings = std::move(glsl.bindings);
   CacheCountMiss();
-  if (opt.useCache) CacheStore(cacheDir, key, b, includer.deps());
-  return b;
+  if (opt.useCache) {
+    if (cacheDir.empty()) MemoryCacheStore(key, result, includer.deps());
+    else CacheStore(cacheDir, key, result, includer.deps());
+  }
+  if (warnings) *warnings = result.warnings;
+  return std::move(result.bytecode);
 }
 
-ShaderBytecode CompileFile(const fs::path& file, const CompileOptions& opt) {
+ShaderBytecode CompileFile(const fs::path& file, const CompileOptions& opt, std::vector<Diagnostic>* warnings) {
   std::string source;
   if (!ReadFile(file, &source)) {
     std::string msg = "cannot open the file";
     throw CompileError("CompileFile", file.string(), {{file.string(), 0, msg}}, msg);
   }
-  return CompileSource(source, file.string(), opt);
+  return CompileSource(source, file.string(), opt, warnings);
+}
+
+// ---- D3DCompile's shape ----------------------------------------------------------------------
+
+Blob::Blob(size_t size) : data_(new uint8_t[size ? size : 1]()), size_(size) {}
+
+Blob* Blob::Create(const void* data, size_t size) {
+  Blob* b = new Blob(size);
+  if (data && size) std::memcpy(b->data_.get(), data, size);
+  return b;
+}
+
+uint32_t Blob::AddRef() { return ++refs_; }
+
+uint32_t Blob::Release() {
+  uint32_t left = --refs_;
+  if (left == 0) delete this;
+  return left;
+}
+
+HRESULT CreateBlob(size_t size, Blob** blob) {
+  if (!blob) return E_INVALIDARG;
+  *blob = Blob::Create(nullptr, size);
+  return S_OK;
+}
+
+namespace {
+
+// fxc's error blobs are C strings whose size counts the terminator.
+Blob* TextBlob(const std::string& text) { return Blob::Create(text.c_str(), text.size() + 1); }
+
+HRESULT Refuse(HRESULT hr, const std::string& why, Blob** errors) {
+  if (errors) *errors = TextBlob(why);
+  return hr;
+}
+
+// The common part of Compile and CompileFromFile once the source is in memory.
+HRESULT CompileToBlobs(std::string_view source, const std::string& fileName, const SHADER_MACRO* defines, Include* include,
+                       const char* entry, const char* target, uint32_t flags1, Blob** code, Blob** errors) {
+  if (include && include != COMPILE_STANDARD_FILE_INCLUDE)
+    return Refuse(E_INVALIDARG,
+                  fileName + ": error: include handlers (ID3DInclude) are not supported; pass nullptr or "
+                             "COMPILE_STANDARD_FILE_INCLUDE, or CompileOptions::includeDirs to CompileSource",
+                  errors);
+  if (std::string bad = CheckCompileFlags(flags1); !bad.empty()) return Refuse(E_INVALIDARG, fileName + ": error: " + bad, errors);
+  CompileOptions opt;
+  opt.target = target;
+  opt.entryPoint = entry ? entry : "";
+  opt.flags1 = flags1;
+  for (const SHADER_MACRO* m = defines; m && m->Name; ++m)
+    // A lone space keeps `#define NAME` empty: Define's empty value would mean 1.
+    opt.defines.push_back({m->Name, m->Definition && *m->Definition ? m->Definition : " "});
+  std::vector<Diagnostic> warnings;
+  try {
+    ShaderBytecode b = CompileSource(source, fileName, opt, &warnings);
+    std::vector<uint8_t> bytes = b.Serialize();
+    *code = Blob::Create(bytes.data(), bytes.size());
+    if (errors && !warnings.empty()) *errors = TextBlob(FormatDiagnostics(warnings, "warning"));
+    return S_OK;
+  } catch (const CompileError& e) {
+    return Refuse(E_FAIL, e.diagnostics().empty() ? e.what() : FormatDiagnostics(e.diagnostics(), "error"), errors);
+  } catch (const std::exception& e) {
+    return Refuse(E_FAIL, fileName + ": error: " + e.what(), errors);
+  }
+}
+
+}  // namespace
+
+HRESULT Compile(const void* srcData, size_t srcDataSize, const char* sourceName, const SHADER_MACRO* defines, Include* include,
+                const char* entrypoint, const char* target, uint32_t flags1, uint32_t /*flags2*/, Blob** code, Blob** errors) {
+  if (code) *code = nullptr;
+  if (errors) *errors = nullptr;
+  std::string name = sourceName && *sourceName ? sourceName : "memory";
+  if (!code) return Refuse(E_INVALIDARG, name + ": error: Compile: ppCode is null", errors);
+  if (!srcData) return Refuse(E_INVALIDARG, name + ": error: Compile: pSrcData is null", errors);
+  if (!target) return Refuse(E_INVALIDARG, name + ": error: Compile: pTarget is null", errors);
+  return CompileToBlobs(std::string_view(static_cast<const char*>(srcData), srcDataSize), name, defines, include, entrypoint,
+                        target, flags1, code, errors);
+}
+
+HRESULT CompileFromFile(const fs::path& fileName, const SHADER_MACRO* defines, Include* include, const char* entrypoint,
+                        const char* target, uint32_t flags1, uint32_t /*flags2*/, Blob** code, Blob** errors) {
+  if (code) *code = nullptr;
+  if (errors) *errors = nullptr;
+  std::string name = fileName.string();
+  if (!code) return Refuse(E_INVALIDARG, name + ": error: CompileFromFile: ppCode is null", errors);
+  if (!target) return Refuse(E_INVALIDARG, name + ": error: CompileFromFile: pTarget is null", errors);
+  std::string source;
+  if (!ReadFile(fileName, &source)) return Refuse(E_FAIL, name + ": error: cannot open the file", errors);
+  return CompileToBlobs(source, name, defines, include, entrypoint, target, flags1, code, errors);
 }
 
 }  // namespace sp::hlsl

@@ -13,7 +13,7 @@ struct SPIRType;
 namespace sp::hlsl {
 
 // Toolchain revision: part of every cache key. Bump it when a stage changes its output.
-inline constexpr const char* kToolchainRevision = "sp-hlsl-15";
+inline constexpr const char* kToolchainRevision = "sp-hlsl-16";
 
 // Reflection from SPIR-V that still carries SPV_GOOGLE_hlsl_functionality1 decorations
 // (semantics, counter buffers). Throws CompileError for bindings outside ShadowPort's scheme.
@@ -44,6 +44,9 @@ struct GlStageBases {
 };
 GlStageBases GlBasesForStage(ShaderStage stage);
 inline constexpr uint32_t kGlUavCounterBase = 8;  // storage-block binding of uN's counter: 8 + N
+
+// "" when `flags` is a valid combination of COMPILE_* bits, else the reason it is not.
+std::string CheckCompileFlags(uint32_t flags);
 
 // fnv-1a 64 over bytes, for cache keys and include dependencies.
 uint64_t Hash64(const void* data, size_t size, uint64_t seed = 1469598103934665603ull);

@@ -4,6 +4,7 @@
 #include <sp/rhi/context.h>
 #include <sp/rhi/device.h>
 #include <sp/rhi/format.h>
+#include <sp/rhi/helpers.h>
 #include <sp/rhi/query.h>
 #include <sp/rhi/resource.h>
 #include <sp/rhi/shader.h>

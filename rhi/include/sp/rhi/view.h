@@ -55,23 +55,37 @@ enum BUFFEREX_SRV_FLAG : uint32_t { BUFFEREX_SRV_FLAG_RAW = 0x1 };
 enum DSV_FLAG : uint32_t { DSV_READ_ONLY_DEPTH = 0x1, DSV_READ_ONLY_STENCIL = 0x2 };
 enum BUFFER_UAV_FLAG : uint32_t { BUFFER_UAV_FLAG_RAW = 0x1, BUFFER_UAV_FLAG_APPEND = 0x2, BUFFER_UAV_FLAG_COUNTER = 0x4 };
 
-struct BUFFER_SRV { uint32_t FirstElement = 0; uint32_t NumElements = 0; };
-struct BUFFEREX_SRV { uint32_t FirstElement = 0; uint32_t NumElements = 0; uint32_t Flags = 0; };
-struct TEX1D_SRV { uint32_t MostDetailedMip = 0; uint32_t MipLevels = 0; };
-struct TEX1D_ARRAY_SRV { uint32_t MostDetailedMip = 0; uint32_t MipLevels = 0; uint32_t FirstArraySlice = 0; uint32_t ArraySize = 0; };
-struct TEX2D_SRV { uint32_t MostDetailedMip = 0; uint32_t MipLevels = 0; };
-struct TEX2D_ARRAY_SRV { uint32_t MostDetailedMip = 0; uint32_t MipLevels = 0; uint32_t FirstArraySlice = 0; uint32_t ArraySize = 0; };
-struct TEX2DMS_SRV { uint32_t UnusedField_NothingToDefine = 0; };
-struct TEX2DMS_ARRAY_SRV { uint32_t FirstArraySlice = 0; uint32_t ArraySize = 0; };
-struct TEX3D_SRV { uint32_t MostDetailedMip = 0; uint32_t MipLevels = 0; };
-struct TEXCUBE_SRV { uint32_t MostDetailedMip = 0; uint32_t MipLevels = 0; };
-struct TEXCUBE_ARRAY_SRV { uint32_t MostDetailedMip = 0; uint32_t MipLevels = 0; uint32_t First2DArrayFace = 0; uint32_t NumCubes = 0; };
+// The members of the view unions are trivial, as in D3D11 (a union of non-trivial members cannot
+// be default-constructed): zero them through the desc, not on their own.
+// D3D11 names the buffer fields twice (FirstElement/ElementOffset, NumElements/ElementWidth).
+struct BUFFER_SRV {
+  union { uint32_t FirstElement; uint32_t ElementOffset; };
+  union { uint32_t NumElements; uint32_t ElementWidth; };
+};
+struct BUFFEREX_SRV { uint32_t FirstElement; uint32_t NumElements; uint32_t Flags; };
+struct TEX1D_SRV { uint32_t MostDetailedMip; uint32_t MipLevels; };
+struct TEX1D_ARRAY_SRV { uint32_t MostDetailedMip; uint32_t MipLevels; uint32_t FirstArraySlice; uint32_t ArraySize; };
+struct TEX2D_SRV { uint32_t MostDetailedMip; uint32_t MipLevels; };
+struct TEX2D_ARRAY_SRV { uint32_t MostDetailedMip; uint32_t MipLevels; uint32_t FirstArraySlice; uint32_t ArraySize; };
+struct TEX2DMS_SRV { uint32_t UnusedField_NothingToDefine; };
+struct TEX2DMS_ARRAY_SRV { uint32_t FirstArraySlice; uint32_t ArraySize; };
+struct TEX3D_SRV { uint32_t MostDetailedMip; uint32_t MipLevels; };
+struct TEXCUBE_SRV { uint32_t MostDetailedMip; uint32_t MipLevels; };
+struct TEXCUBE_ARRAY_SRV { uint32_t MostDetailedMip; uint32_t MipLevels; uint32_t First2DArrayFace; uint32_t NumCubes; };
+
+// The view descs are aggregates laid out as D3D11's, so D3D11's brace initialisation works:
+//   SHADER_RESOURCE_VIEW_DESC d = { FORMAT_R32_FLOAT, SRV_DIMENSION_TEXTURE2D, 0, 1 };
+// fills the union's first words (Buffer.FirstElement/NumElements in D3D11, the same bytes as
+// Texture2D.MostDetailedMip/MipLevels). Each union starts with Words_, the whole union as words,
+// so that brace initialisation and a default-constructed desc leave every field not given zero,
+// whichever union member is read. Words_ is not part of D3D11's interface; don't use it.
 
 // MipLevels = uint32_t(-1) means "all remaining mips", as in D3D11.
 struct SHADER_RESOURCE_VIEW_DESC {
   FORMAT Format = FORMAT_UNKNOWN;
   SRV_DIMENSION ViewDimension = SRV_DIMENSION_UNKNOWN;
   union {
+    uint32_t Words_[4] = {};
     BUFFER_SRV Buffer;
     TEX1D_SRV Texture1D;
     TEX1D_ARRAY_SRV Texture1DArray;
@@ -84,22 +98,25 @@ struct SHADER_RESOURCE_VIEW_DESC {
     TEXCUBE_ARRAY_SRV TextureCubeArray;
     BUFFEREX_SRV BufferEx;
   };
-  SHADER_RESOURCE_VIEW_DESC() : BufferEx{} {}
 };
 
-struct BUFFER_RTV { uint32_t FirstElement = 0; uint32_t NumElements = 0; };
-struct TEX1D_RTV { uint32_t MipSlice = 0; };
-struct TEX1D_ARRAY_RTV { uint32_t MipSlice = 0; uint32_t FirstArraySlice = 0; uint32_t ArraySize = 0; };
-struct TEX2D_RTV { uint32_t MipSlice = 0; };
-struct TEX2D_ARRAY_RTV { uint32_t MipSlice = 0; uint32_t FirstArraySlice = 0; uint32_t ArraySize = 0; };
-struct TEX2DMS_RTV { uint32_t UnusedField_NothingToDefine = 0; };
-struct TEX2DMS_ARRAY_RTV { uint32_t FirstArraySlice = 0; uint32_t ArraySize = 0; };
-struct TEX3D_RTV { uint32_t MipSlice = 0; uint32_t FirstWSlice = 0; uint32_t WSize = 0; };
+struct BUFFER_RTV {
+  union { uint32_t FirstElement; uint32_t ElementOffset; };
+  union { uint32_t NumElements; uint32_t ElementWidth; };
+};
+struct TEX1D_RTV { uint32_t MipSlice; };
+struct TEX1D_ARRAY_RTV { uint32_t MipSlice; uint32_t FirstArraySlice; uint32_t ArraySize; };
+struct TEX2D_RTV { uint32_t MipSlice; };
+struct TEX2D_ARRAY_RTV { uint32_t MipSlice; uint32_t FirstArraySlice; uint32_t ArraySize; };
+struct TEX2DMS_RTV { uint32_t UnusedField_NothingToDefine; };
+struct TEX2DMS_ARRAY_RTV { uint32_t FirstArraySlice; uint32_t ArraySize; };
+struct TEX3D_RTV { uint32_t MipSlice; uint32_t FirstWSlice; uint32_t WSize; };
 
 struct RENDER_TARGET_VIEW_DESC {
   FORMAT Format = FORMAT_UNKNOWN;
   RTV_DIMENSION ViewDimension = RTV_DIMENSION_UNKNOWN;
   union {
+    uint32_t Words_[3] = {};
     BUFFER_RTV Buffer;
     TEX1D_RTV Texture1D;
     TEX1D_ARRAY_RTV Texture1DArray;
@@ -109,21 +126,21 @@ struct RENDER_TARGET_VIEW_DESC {
     TEX2DMS_ARRAY_RTV Texture2DMSArray;
     TEX3D_RTV Texture3D;
   };
-  RENDER_TARGET_VIEW_DESC() : Texture3D{} {}
 };
 
-struct TEX1D_DSV { uint32_t MipSlice = 0; };
-struct TEX1D_ARRAY_DSV { uint32_t MipSlice = 0; uint32_t FirstArraySlice = 0; uint32_t ArraySize = 0; };
-struct TEX2D_DSV { uint32_t MipSlice = 0; };
-struct TEX2D_ARRAY_DSV { uint32_t MipSlice = 0; uint32_t FirstArraySlice = 0; uint32_t ArraySize = 0; };
-struct TEX2DMS_DSV { uint32_t UnusedField_NothingToDefine = 0; };
-struct TEX2DMS_ARRAY_DSV { uint32_t FirstArraySlice = 0; uint32_t ArraySize = 0; };
+struct TEX1D_DSV { uint32_t MipSlice; };
+struct TEX1D_ARRAY_DSV { uint32_t MipSlice; uint32_t FirstArraySlice; uint32_t ArraySize; };
+struct TEX2D_DSV { uint32_t MipSlice; };
+struct TEX2D_ARRAY_DSV { uint32_t MipSlice; uint32_t FirstArraySlice; uint32_t ArraySize; };
+struct TEX2DMS_DSV { uint32_t UnusedField_NothingToDefine; };
+struct TEX2DMS_ARRAY_DSV { uint32_t FirstArraySlice; uint32_t ArraySize; };
 
 struct DEPTH_STENCIL_VIEW_DESC {
   FORMAT Format = FORMAT_UNKNOWN;
   DSV_DIMENSION ViewDimension = DSV_DIMENSION_UNKNOWN;
   uint32_t Flags = 0;
   union {
+    uint32_t Words_[3] = {};
     TEX1D_DSV Texture1D;
     TEX1D_ARRAY_DSV Texture1DArray;
     TEX2D_DSV Texture2D;
@@ -131,20 +148,20 @@ struct DEPTH_STENCIL_VIEW_DESC {
     TEX2DMS_DSV Texture2DMS;
     TEX2DMS_ARRAY_DSV Texture2DMSArray;
   };
-  DEPTH_STENCIL_VIEW_DESC() : Texture2DArray{} {}
 };
 
-struct BUFFER_UAV { uint32_t FirstElement = 0; uint32_t NumElements = 0; uint32_t Flags = 0; };
-struct TEX1D_UAV { uint32_t MipSlice = 0; };
-struct TEX1D_ARRAY_UAV { uint32_t MipSlice = 0; uint32_t FirstArraySlice = 0; uint32_t ArraySize = 0; };
-struct TEX2D_UAV { uint32_t MipSlice = 0; };
-struct TEX2D_ARRAY_UAV { uint32_t MipSlice = 0; uint32_t FirstArraySlice = 0; uint32_t ArraySize = 0; };
-struct TEX3D_UAV { uint32_t MipSlice = 0; uint32_t FirstWSlice = 0; uint32_t WSize = 0; };
+struct BUFFER_UAV { uint32_t FirstElement; uint32_t NumElements; uint32_t Flags; };
+struct TEX1D_UAV { uint32_t MipSlice; };
+struct TEX1D_ARRAY_UAV { uint32_t MipSlice; uint32_t FirstArraySlice; uint32_t ArraySize; };
+struct TEX2D_UAV { uint32_t MipSlice; };
+struct TEX2D_ARRAY_UAV { uint32_t MipSlice; uint32_t FirstArraySlice; uint32_t ArraySize; };
+struct TEX3D_UAV { uint32_t MipSlice; uint32_t FirstWSlice; uint32_t WSize; };
 
 struct UNORDERED_ACCESS_VIEW_DESC {
   FORMAT Format = FORMAT_UNKNOWN;
   UAV_DIMENSION ViewDimension = UAV_DIMENSION_UNKNOWN;
   union {
+    uint32_t Words_[3] = {};
     BUFFER_UAV Buffer;
     TEX1D_UAV Texture1D;
     TEX1D_ARRAY_UAV Texture1DArray;
@@ -152,7 +169,6 @@ struct UNORDERED_ACCESS_VIEW_DESC {
     TEX2D_ARRAY_UAV Texture2DArray;
     TEX3D_UAV Texture3D;
   };
-  UNORDERED_ACCESS_VIEW_DESC() : Texture3D{} {}
 };
 
 // What a view covers, in one form for all view kinds. Filled by the core when the view is
