@@ -34,7 +34,8 @@ function(sp_sample_test name exe scene)
   string(APPEND run " && ${SP_REPORT_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/samples/check_sample_image.py ${scene}"
                     " ${name}-vulkan.png ${name}-gl.png")
   add_test(NAME samples.${name} COMMAND bash -c "${run}")
-  set_tests_properties(samples.${name} PROPERTIES FIXTURES_REQUIRED sp_samples_installed TIMEOUT 300)
+  set_tests_properties(samples.${name} PROPERTIES FIXTURES_REQUIRED sp_samples_installed TIMEOUT 300
+                       ENVIRONMENT "${SP_SHADER_CACHE_ENV}")
 endfunction()
 
 set(SP_SAMPLES_BIN ${PROJECT_BINARY_DIR}/samples-installed)
