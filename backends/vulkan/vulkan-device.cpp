@@ -6,7 +6,6 @@
 #include <cstdlib>
 #include <cstring>
 
-#include "backend-factory.h"
 #include "vulkan-internal.h"
 
 namespace sp::vk {
@@ -72,7 +71,7 @@ std::string Lower(std::string s) {
 
 }  // namespace
 
-VulkanDevice::VulkanDevice(const DeviceDesc& desc) : Device(desc) {
+VulkanDevice::VulkanDevice(Device& core, const DeviceDesc& desc) : DeviceBackend(core) {
   try {
     CreateInstance(desc.debug);
     PickPhysicalDevice();
@@ -81,21 +80,23 @@ VulkanDevice::VulkanDevice(const DeviceDesc& desc) : Device(desc) {
     alloc.Init(this);
     VkPipelineCacheCreateInfo pci{VK_STRUCTURE_TYPE_PIPELINE_CACHE_CREATE_INFO};
     Check(vkCreatePipelineCache(device, &pci, nullptr, &pipelineCache), "CreateDevice", "vulkan", "vkCreatePipelineCache");
-    auto context = std::make_unique<VulkanContext>(this);
-    ctx = context.get();
-    InitContext(std::make_unique<DeviceContext>(this, std::move(context)));
-    CalibrateDepthBias();
   } catch (...) {
     Teardown();
     throw;
   }
 }
 
+std::unique_ptr<detail::ContextBackend> VulkanDevice::CreateContextBackend() {
+  auto context = std::make_unique<VulkanContext>(this);
+  ctx = context.get();
+  return context;
+}
+
 VulkanDevice::~VulkanDevice() { Teardown(); }
 
+// The core has destroyed the context and released every object's Vulkan data before this runs;
+// their destruction is deferred until the GPU is done with them, which is now.
 void VulkanDevice::Teardown() {
-  // Unbinds everything and releases what the application still holds while Vulkan is alive.
-  ShutdownCore();
   if (device) {
     vkDeviceWaitIdle(device);
     completedSerial = recordingSerial;
@@ -547,6 +548,6 @@ std::unique_ptr<detail::BackendObject> VulkanDevice::CreateQueryBackend(Query& q
 
 }  // namespace sp::vk
 
-namespace sp {
-Ref<Device> CreateVulkanDevice(const DeviceDesc& desc) { return std::make_shared<vk::VulkanDevice>(desc); }
-}  // namespace sp
+namespace sp::detail {
+std::unique_ptr<DeviceBackend> CreateVulkanBackend(Device& core, const DeviceDesc& desc) { return std::make_unique<vk::VulkanDevice>(core, desc); }
+}  // namespace sp::detail

@@ -3,7 +3,18 @@
 #pragma once
 #include <sp/rhi/context.h>
 
+#include "pipeline-state.h"
+
 namespace sp {
+
+std::string SlotName(ShaderStage stage, char cls, uint32_t slot);  // "PS slot t3"
+
+template <class T>
+Ref<T> RefOf(T* p) {
+  return p ? std::static_pointer_cast<T>(p->shared_from_this()) : Ref<T>();
+}
+
+namespace detail {
 
 class ContextHazards {
  public:
@@ -19,10 +30,9 @@ class ContextHazards {
 
 class DrawValidator {
  public:
-  static void CheckDraw(DeviceContext& ctx, const detail::DrawArgs& args, const char* call);
+  static void CheckDraw(DeviceContext& ctx, const DrawArgs& args, const char* call);
   static void CheckDispatch(DeviceContext& ctx, const char* call);
 };
 
-std::string SlotName(ShaderStage stage, char cls, uint32_t slot);  // "PS slot t3"
-
+}  // namespace detail
 }  // namespace sp

@@ -5,6 +5,7 @@
 #include "validate.h"
 
 namespace sp {
+using namespace detail;
 namespace {
 
 const char* ComponentName(ComponentType t) {
@@ -175,8 +176,8 @@ struct Checker {
 
 }  // namespace
 
-void DrawValidator::CheckDraw(DeviceContext& ctx, const detail::DrawArgs& args, const char* call) {
-  const PipelineState& s = ctx.State();
+void DrawValidator::CheckDraw(DeviceContext& ctx, const DrawArgs& args, const char* call) {
+  const PipelineState& s = *ctx.state_;
   Checker c{ctx, s, call};
   const Shader* vs = s.stage(ShaderStage::Vertex).shader.get();
   if (!vs) Fail(ErrorId::DRAW_STATE_INVALID, call, "pipeline", "no vertex shader is bound (VSSetShader)");
@@ -203,7 +204,7 @@ void DrawValidator::CheckDraw(DeviceContext& ctx, const detail::DrawArgs& args, 
                                                                   std::to_string(attr->slot) + " but no vertex buffer is bound there");
     }
   }
-  bool indexed = args.kind == detail::DrawArgs::DrawIndexed || args.kind == detail::DrawArgs::DrawIndexedInstancedIndirect;
+  bool indexed = args.kind == DrawArgs::DrawIndexed || args.kind == DrawArgs::DrawIndexedInstancedIndirect;
   if (indexed && !s.indexBuffer) Fail(ErrorId::DRAW_STATE_INVALID, call, "pipeline", "indexed draw without an index buffer (IASetIndexBuffer)");
 
   // Shader interface: what the pixel shader reads must be written by the vertex shader.
@@ -241,7 +242,7 @@ void DrawValidator::CheckDraw(DeviceContext& ctx, const detail::DrawArgs& args, 
 }
 
 void DrawValidator::CheckDispatch(DeviceContext& ctx, const char* call) {
-  const PipelineState& s = ctx.State();
+  const PipelineState& s = *ctx.state_;
   if (!s.stage(ShaderStage::Compute).shader) Fail(ErrorId::DRAW_STATE_INVALID, call, "pipeline", "no compute shader is bound (CSSetShader)");
   Checker c{ctx, s, call};
   c.checkStage(ShaderStage::Compute);

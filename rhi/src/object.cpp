@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <string>
 
+#include "backend.h"
+
 namespace sp {
 
 Object::Object(Device* device) : device_(device), uid_(0) {
@@ -24,6 +26,21 @@ Object::~Object() {
 void Object::SetDebugName(std::string_view name) {
   name_ = std::string(name);
   OnDebugNameChanged();
+}
+
+uint32_t Object::AddRef() {
+  if (comRefs_++ == 0) comSelf_ = shared_from_this();
+  return comRefs_;
+}
+
+uint32_t Object::Release() {
+  if (comRefs_ == 0)
+    throw Error(ErrorId::INVALID_ARGUMENT, "Release", Describe(), "the object holds no COM reference (Release without AddRef, or once too often)");
+  if (--comRefs_ > 0) return comRefs_;
+  // The last COM reference: drop the self-reference last, since it may destroy this object.
+  std::shared_ptr<Object> self = std::move(comSelf_);
+  self.reset();
+  return 0;
 }
 
 std::string Object::Describe() const {

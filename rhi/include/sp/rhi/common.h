@@ -1,14 +1,19 @@
 // Basic vocabulary of the ShadowPort RHI: handles, errors, the object base class.
 //
 // Porting rule of thumb: `ID3D11Foo` -> `sp::Foo`, `D3D11_BAR` -> `sp::BAR`, `DXGI_FORMAT_X` ->
-// `sp::FORMAT_X`. COM pointers become `sp::Ref<T>` (shared ownership, like AddRef/Release), and a
-// failed HRESULT becomes a thrown `sp::Error` whose message names the call and the object.
+// `sp::FORMAT_X`. COM pointers become `sp::Ref<T>` (shared ownership) or stay raw pointers with
+// AddRef/Release, and a failed HRESULT becomes a thrown `sp::Error` whose message names the call
+// and the object.
 #pragma once
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <type_traits>
+#include <utility>
+#include <vector>
 
 namespace sp {
 
@@ -89,11 +94,8 @@ enum class MessageSeverity : uint8_t { Info, Warning, Error };
 class Device;
 
 namespace detail {
-// What a backend attaches to a core object (VkImage, GL texture name, ...). The core owns the
-// object; the backend owns this.
-struct BackendObject {
-  virtual ~BackendObject() = default;
-};
+struct BackendObject;  // a backend's data of an object (private)
+struct ObjectAccess;
 }  // namespace detail
 
 // Base of every device child (resources, views, states, shaders, queries).
@@ -108,16 +110,19 @@ class Object : public std::enable_shared_from_this<Object> {
   void SetDebugName(std::string_view name);
   const std::string& GetDebugName() const { return name_; }
 
+  // COM references, for code that keeps raw pointers (`sp::Texture2D* m_pTex; SAFE_RELEASE(m_pTex)`).
+  // They count apart from Ref<T> owners: while any is held the object keeps itself alive, and it
+  // is destroyed when the last Ref and the last COM reference are gone. Release returns the COM
+  // references left (D3D11 returns its total count) and throws sp::Error when none is held.
+  // Like the device, not thread-safe.
+  uint32_t AddRef();
+  uint32_t Release();
+
   // "Texture2D 'shadow map' (1024x1024 R32_TYPELESS)" or "Texture2D #7 (...)" when unnamed.
   std::string Describe() const;
   virtual const char* TypeName() const = 0;
   uint64_t UniqueId() const { return uid_; }
   Device* GetDevice() const { return device_; }
-
-  // Backend data, for backends only.
-  detail::BackendObject* Backend() const { return backend_.get(); }
-  template <class T>
-  T& BackendAs() const { return static_cast<T&>(*backend_); }
 
  protected:
   explicit Object(Device* device);
@@ -126,10 +131,43 @@ class Object : public std::enable_shared_from_this<Object> {
 
  private:
   friend class Device;
+  friend struct detail::ObjectAccess;
   Device* device_;
   uint64_t uid_;
   std::string name_;
   std::unique_ptr<detail::BackendObject> backend_;
+  uint32_t comRefs_ = 0;
+  std::shared_ptr<Object> comSelf_;  // held while comRefs_ > 0
+};
+
+// The out-pointer of the D3D11-shaped calls: a COM-style `T**` (it receives an AddRef'd pointer,
+// to be Released, as from D3D11), a `Ref<T>*`, or null (`NULL`, `nullptr`). Arrays (the *Get*
+// calls) are indexed.
+template <class T>
+class OutPtr {
+ public:
+  OutPtr(T** raw) : raw_(raw) {}
+  OutPtr(Ref<T>* ref) : ref_(ref) {}
+  OutPtr(std::nullptr_t) {}
+  // NULL as ported code writes it (an integer constant 0 in C++).
+  template <class Int>
+    requires std::is_integral_v<Int>
+  OutPtr(Int) {}
+
+  bool IsNull() const { return !raw_ && !ref_; }
+  void Set(size_t i, Ref<T> value) const {
+    if (raw_) {
+      if (value) value->AddRef();
+      raw_[i] = value.get();
+    } else if (ref_) {
+      ref_[i] = std::move(value);
+    }
+  }
+  void Set(Ref<T> value) const { Set(0, std::move(value)); }
+
+ private:
+  T** raw_ = nullptr;
+  Ref<T>* ref_ = nullptr;
 };
 
 }  // namespace sp

@@ -19,6 +19,10 @@ namespace sp {
 
 class DeviceContext;
 
+namespace detail {
+class DeviceBackend;
+}  // namespace detail
+
 enum class Backend : uint8_t { Vulkan, OpenGL };
 const char* BackendName(Backend b);       // "vulkan", "gl"
 bool ParseBackend(std::string_view s, Backend* out);
@@ -74,7 +78,7 @@ enum FORMAT_SUPPORT : uint32_t {
 
 class Device {
  public:
-  virtual ~Device();
+  ~Device();
   Device(const Device&) = delete;
   Device& operator=(const Device&) = delete;
 
@@ -124,43 +128,29 @@ class Device {
   std::string LastValidationError() const;
   void SetMessageCallback(MessageCallback cb) { callback_ = std::move(cb); }
 
-  // For backends and the core: report a message; Error severity counts as a validation error.
+  // Reports a message as D3D11's debug layer would; Error severity counts as a validation error.
   void Message(MessageSeverity severity, std::string_view text);
 
- protected:
-  explicit Device(const DeviceDesc& desc);
-  // Backends call this at the end of their constructor, once they can create objects.
-  void InitContext(std::unique_ptr<DeviceContext> context);
-  // Backends call this first in their destructor: unbinds everything and releases the backend
-  // data of objects the application still holds, while the backend can still free them.
-  void ShutdownCore();
-  // Backends call this once the device works: measures the driver's constant depth-bias unit for
-  // D16, D24 and D32F by drawing a biased quad (public API only) and sets info_.depthBiasScale*.
-  void CalibrateDepthBias();
-  DeviceInfo info_;
-
-  // Backend hooks. Arguments are validated and normalised (full view descs, resolved defaults).
-  virtual std::unique_ptr<detail::BackendObject> CreateBufferBackend(Buffer& buffer, const SUBRESOURCE_DATA* init) = 0;
-  virtual std::unique_ptr<detail::BackendObject> CreateTextureBackend(Texture& texture, const SUBRESOURCE_DATA* init) = 0;
-  virtual std::unique_ptr<detail::BackendObject> CreateViewBackend(View& view) = 0;
-  virtual std::unique_ptr<detail::BackendObject> CreateSamplerBackend(SamplerState& sampler) = 0;
-  virtual std::unique_ptr<detail::BackendObject> CreateShaderBackend(Shader& shader) = 0;
-  virtual std::unique_ptr<detail::BackendObject> CreateQueryBackend(Query& query) = 0;
-  virtual uint32_t FormatSupportBackend(FORMAT format) const = 0;
-  virtual uint32_t MaxSampleCountBackend(FORMAT format) const = 0;
-  // Whether exactly `count` samples (a power of two) are supported: drivers may offer 4x but not
-  // 2x (Mesa's software rasterizers), which a maximum alone cannot say.
-  virtual bool SampleCountSupportedBackend(FORMAT format, uint32_t count) const { return count <= MaxSampleCountBackend(format); }
-
  private:
+  friend Ref<Device> CreateDevice(const DeviceDesc& desc);
   friend class Object;
+  friend class detail::DeviceBackend;
+  explicit Device(const DeviceDesc& desc);
   template <class T, class... A>
   Ref<T> Make(A&&... args);
   template <class T>
   Ref<T> CreateShaderOfStage(ShaderStage stage, const ShaderBytecode& bytecode, const char* call);
   void ValidateTextureShape(TextureShape& shape, const char* call, const std::string& object,
                             const SUBRESOURCE_DATA* init) const;
+  // Measures the driver's constant depth-bias unit for D16, D24 and D32F by drawing a biased quad
+  // (public API only) and sets info_.depthBiasScale*. Needs the immediate context.
+  void CalibrateDepthBias();
+  // Unbinds everything and releases the backend data of every object still alive, while the
+  // backend can still free it.
+  void ReleaseBackendData();
 
+  DeviceInfo info_;
+  std::unique_ptr<detail::DeviceBackend> backend_;
   std::unique_ptr<DeviceContext> context_;
   MessageCallback callback_;
   uint64_t validationErrors_ = 0;
@@ -175,8 +165,9 @@ Ref<T> Device::Make(A&&... args) {
   return Ref<T>(new T(this, std::forward<A>(args)...));
 }
 
-// Creates a device on the requested backend. Throws sp::Error(DEVICE_CREATION_FAILED) with the
-// reason (no Vulkan driver, EGL cannot create a 4.5 core context, ...).
+// Creates a device on the requested backend: the backend, then the immediate context, then the
+// depth-bias calibration. Throws sp::Error(DEVICE_CREATION_FAILED) with the reason (no Vulkan
+// driver, EGL cannot create a 4.5 core context, ...).
 Ref<Device> CreateDevice(const DeviceDesc& desc);
 
 }  // namespace sp
