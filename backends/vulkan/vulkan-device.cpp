@@ -29,7 +29,7 @@ void ThrowVk(VkResult r, const char* call, const std::string& object, const char
   ErrorId id = ErrorId::DEVICE_API_ERROR;
   std::string detail = std::string(what) + " returned " + ResultName(r) + " (" + std::to_string(int(r)) + ")";
   if (r == VK_ERROR_OUT_OF_DEVICE_MEMORY || r == VK_ERROR_OUT_OF_HOST_MEMORY) {
-    id = ErrorId::SIZE_OUT_OF_RANGE;
+    id = ErrorId::OUT_OF_MEMORY;
     detail += ": the device ran out of memory";
   } else if (r == VK_ERROR_FORMAT_NOT_SUPPORTED) {
     id = ErrorId::FORMAT_UNSUPPORTED;

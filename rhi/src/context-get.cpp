@@ -19,8 +19,14 @@ void CopyOut(const Slots& slots, uint32_t start, uint32_t num, const OutPtr<T>& 
 }
 
 template <class T>
-void GetShaderOf(const PipelineState& s, ShaderStage stage, const OutPtr<T>& out) {
+void GetShaderOf(const PipelineState& s, ShaderStage stage, const OutPtr<T>& out, ClassInstance** instances, uint32_t* numInstances) {
   out.Set(std::static_pointer_cast<T>(s.stage(stage).shader));
+  // No class instances are ever bound (class linkage is not supported).
+  if (numInstances) {
+    if (instances)
+      for (uint32_t i = 0; i < *numInstances; ++i) instances[i] = nullptr;
+    *numInstances = 0;
+  }
 }
 
 }  // namespace
@@ -46,10 +52,10 @@ void DeviceContext::IAGetIndexBuffer(OutPtr<Buffer> buffer, FORMAT* format, uint
   if (offset) *offset = state_->indexOffset;
 }
 
-void DeviceContext::VSGetShader(OutPtr<VertexShader> s) const { GetShaderOf(*state_, ShaderStage::Vertex, s); }
-void DeviceContext::PSGetShader(OutPtr<PixelShader> s) const { GetShaderOf(*state_, ShaderStage::Pixel, s); }
-void DeviceContext::GSGetShader(OutPtr<GeometryShader> s) const { GetShaderOf(*state_, ShaderStage::Geometry, s); }
-void DeviceContext::CSGetShader(OutPtr<ComputeShader> s) const { GetShaderOf(*state_, ShaderStage::Compute, s); }
+void DeviceContext::VSGetShader(OutPtr<VertexShader> s, ClassInstance** ci, uint32_t* n) const { GetShaderOf(*state_, ShaderStage::Vertex, s, ci, n); }
+void DeviceContext::PSGetShader(OutPtr<PixelShader> s, ClassInstance** ci, uint32_t* n) const { GetShaderOf(*state_, ShaderStage::Pixel, s, ci, n); }
+void DeviceContext::GSGetShader(OutPtr<GeometryShader> s, ClassInstance** ci, uint32_t* n) const { GetShaderOf(*state_, ShaderStage::Geometry, s, ci, n); }
+void DeviceContext::CSGetShader(OutPtr<ComputeShader> s, ClassInstance** ci, uint32_t* n) const { GetShaderOf(*state_, ShaderStage::Compute, s, ci, n); }
 
 void DeviceContext::GetConstantBuffers(ShaderStage stage, uint32_t start, uint32_t num, OutPtr<Buffer> out, const char* call) const {
   CheckRange(start, num, COMMONSHADER_CONSTANT_BUFFER_API_SLOT_COUNT, call, "constant buffer slots");

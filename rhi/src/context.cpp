@@ -96,17 +96,20 @@ void DeviceContext::IASetIndexBuffer(Buffer* b, FORMAT format, uint32_t offset) 
 // ---------------------------------------------------------------------------------------------
 // Shader stages
 
-void DeviceContext::SetShader(ShaderStage stage, Shader* shader, const char* call) {
+void DeviceContext::SetShader(ShaderStage stage, Shader* shader, ClassInstance* const* instances, uint32_t numInstances, const char* call) {
   CheckOwner(device_, shader, call);
+  if (instances || numInstances)
+    Fail(ErrorId::NOT_SUPPORTED, call, Describe(shader),
+         "D3D11 class linkage (dynamic shader linkage) is not supported: pass ppClassInstances = NULL and NumClassInstances = 0");
   if (shader && shader->Stage() != stage) Fail(ErrorId::SHADER_STAGE_MISMATCH, call, Describe(shader), "wrong stage");
   state_->stage(stage).shader = RefOf(shader);
   dirty_ |= DIRTY_SHADERS | (DIRTY_BINDINGS_VS << uint32_t(stage));
 }
 
-void DeviceContext::VSSetShader(VertexShader* s) { SetShader(ShaderStage::Vertex, s, "VSSetShader"); }
-void DeviceContext::PSSetShader(PixelShader* s) { SetShader(ShaderStage::Pixel, s, "PSSetShader"); }
-void DeviceContext::GSSetShader(GeometryShader* s) { SetShader(ShaderStage::Geometry, s, "GSSetShader"); }
-void DeviceContext::CSSetShader(ComputeShader* s) { SetShader(ShaderStage::Compute, s, "CSSetShader"); }
+void DeviceContext::VSSetShader(VertexShader* s, ClassInstance* const* ci, uint32_t n) { SetShader(ShaderStage::Vertex, s, ci, n, "VSSetShader"); }
+void DeviceContext::PSSetShader(PixelShader* s, ClassInstance* const* ci, uint32_t n) { SetShader(ShaderStage::Pixel, s, ci, n, "PSSetShader"); }
+void DeviceContext::GSSetShader(GeometryShader* s, ClassInstance* const* ci, uint32_t n) { SetShader(ShaderStage::Geometry, s, ci, n, "GSSetShader"); }
+void DeviceContext::CSSetShader(ComputeShader* s, ClassInstance* const* ci, uint32_t n) { SetShader(ShaderStage::Compute, s, ci, n, "CSSetShader"); }
 
 void DeviceContext::SetConstantBuffers(ShaderStage stage, uint32_t start, uint32_t num, Buffer* const* buffers, const char* call) {
   CheckSlots(start, num, COMMONSHADER_CONSTANT_BUFFER_API_SLOT_COUNT, call, "constant buffer slots");
@@ -550,7 +553,7 @@ void DeviceContext::CopyStructureCount(Buffer* dst, uint32_t offset, UnorderedAc
   backend_->CopyStructureCount(dst, offset, src);
 }
 
-bool DeviceContext::Map(Resource* r, uint32_t sub, MAP type, uint32_t flags, MAPPED_SUBRESOURCE* out) {
+CallStatus DeviceContext::Map(Resource* r, uint32_t sub, MAP type, uint32_t flags, MAPPED_SUBRESOURCE* out) {
   const char* call = "Map";
   if (!r) Fail(ErrorId::INVALID_ARGUMENT, call, "null", "pResource is null");
   CheckOwner(device_, r, call);
@@ -586,9 +589,9 @@ bool DeviceContext::Map(Resource* r, uint32_t sub, MAP type, uint32_t flags, MAP
   }
   for (auto& m : mapped_)
     if (m.first == r && m.second == sub) Fail(ErrorId::MAP_INVALID, call, Describe(r), "subresource " + std::to_string(sub) + " is already mapped");
-  if (!backend_->Map(r, sub, type, flags, out)) return false;
+  if (!backend_->Map(r, sub, type, flags, out)) return CallStatus(DXGI_ERROR_WAS_STILL_DRAWING);
   mapped_.push_back({r, sub});
-  return true;
+  return CallStatus(S_OK);
 }
 
 void DeviceContext::Unmap(Resource* r, uint32_t sub) {
@@ -654,7 +657,7 @@ void DeviceContext::End(Query* q) {
   backend_->End(q);
 }
 
-bool DeviceContext::GetData(Query* q, void* data, uint32_t size, uint32_t flags) {
+CallStatus DeviceContext::GetData(Query* q, void* data, uint32_t size, uint32_t flags) {
   const char* call = "GetData";
   if (!q) Fail(ErrorId::INVALID_ARGUMENT, call, "null", "pAsync is null");
   CheckOwner(device_, q, call);
@@ -662,7 +665,7 @@ bool DeviceContext::GetData(Query* q, void* data, uint32_t size, uint32_t flags)
     Fail(ErrorId::QUERY_INVALID, call, Describe(q), "DataSize " + std::to_string(size) + " must be " + std::to_string(q->GetDataSize()));
   if (std::find(activeQueries_.begin(), activeQueries_.end(), q) != activeQueries_.end())
     Fail(ErrorId::QUERY_INVALID, call, Describe(q), "GetData between Begin and End");
-  return backend_->GetData(q, data, size, flags);
+  return CallStatus(backend_->GetData(q, data, size, flags) ? S_OK : S_FALSE);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -1,6 +1,7 @@
 #include <sp/rhi/device.h>
 
 #include <algorithm>
+#include <cstring>
 #include <string>
 
 #include "backend.h"
@@ -41,6 +42,51 @@ uint32_t Object::Release() {
   std::shared_ptr<Object> self = std::move(comSelf_);
   self.reset();
   return 0;
+}
+
+HRESULT Object::SetPrivateData(REFGUID guid, uint32_t dataSize, const void* data) {
+  if (dataSize && !data) return E_INVALIDARG;
+  if (guid == WKPDID_D3DDebugObjectName) {
+    const char* text = static_cast<const char*>(data);
+    SetDebugName(std::string_view(text ? text : "", text ? strnlen(text, dataSize) : 0));
+    return S_OK;
+  }
+  auto it = std::find_if(privateData_.begin(), privateData_.end(), [&](const auto& e) { return e.first == guid; });
+  if (!data) {
+    if (it != privateData_.end()) privateData_.erase(it);
+    return S_OK;
+  }
+  const uint8_t* bytes = static_cast<const uint8_t*>(data);
+  std::vector<uint8_t> copy(bytes, bytes + dataSize);
+  if (it != privateData_.end()) it->second = std::move(copy);
+  else privateData_.emplace_back(guid, std::move(copy));
+  return S_OK;
+}
+
+HRESULT Object::GetPrivateData(REFGUID guid, uint32_t* dataSize, void* data) const {
+  if (!dataSize) return E_INVALIDARG;
+  std::string_view bytes;
+  if (guid == WKPDID_D3DDebugObjectName && !name_.empty()) {
+    bytes = name_;
+  } else {
+    auto it = std::find_if(privateData_.begin(), privateData_.end(), [&](const auto& e) { return e.first == guid; });
+    if (it == privateData_.end()) {
+      *dataSize = 0;
+      return DXGI_ERROR_NOT_FOUND;
+    }
+    bytes = std::string_view(reinterpret_cast<const char*>(it->second.data()), it->second.size());
+  }
+  if (!data) {
+    *dataSize = uint32_t(bytes.size());
+    return S_OK;
+  }
+  if (*dataSize < bytes.size()) {
+    *dataSize = uint32_t(bytes.size());
+    return DXGI_ERROR_MORE_DATA;
+  }
+  std::memcpy(data, bytes.data(), bytes.size());
+  *dataSize = uint32_t(bytes.size());
+  return S_OK;
 }
 
 std::string Object::Describe() const {

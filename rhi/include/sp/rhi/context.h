@@ -66,6 +66,8 @@ class DrawValidator;
 }  // namespace detail
 
 
+// Shader stages take a `ClassInstance* const*` and a count as in D3D11; dynamic linkage is not
+// supported, so they must be null and 0 (anything else throws SP_NOT_SUPPORTED).
 class DeviceContext {
  public:
   ~DeviceContext();
@@ -80,10 +82,10 @@ class DeviceContext {
   void IASetIndexBuffer(Buffer* buffer, FORMAT format, uint32_t offset);
 
   // --- Shader stages (VS, PS, GS, CS)
-  void VSSetShader(VertexShader* shader);
-  void PSSetShader(PixelShader* shader);
-  void GSSetShader(GeometryShader* shader);
-  void CSSetShader(ComputeShader* shader);
+  void VSSetShader(VertexShader* shader, ClassInstance* const* classInstances = nullptr, uint32_t numClassInstances = 0);
+  void PSSetShader(PixelShader* shader, ClassInstance* const* classInstances = nullptr, uint32_t numClassInstances = 0);
+  void GSSetShader(GeometryShader* shader, ClassInstance* const* classInstances = nullptr, uint32_t numClassInstances = 0);
+  void CSSetShader(ComputeShader* shader, ClassInstance* const* classInstances = nullptr, uint32_t numClassInstances = 0);
 
   void VSSetConstantBuffers(uint32_t startSlot, uint32_t num, Buffer* const* buffers) { SetConstantBuffers(ShaderStage::Vertex, startSlot, num, buffers, "VSSetConstantBuffers"); }
   void PSSetConstantBuffers(uint32_t startSlot, uint32_t num, Buffer* const* buffers) { SetConstantBuffers(ShaderStage::Pixel, startSlot, num, buffers, "PSSetConstantBuffers"); }
@@ -131,10 +133,10 @@ class DeviceContext {
   void IAGetPrimitiveTopology(PRIMITIVE_TOPOLOGY* topology) const;
   void IAGetVertexBuffers(uint32_t startSlot, uint32_t numBuffers, OutPtr<Buffer> buffers, uint32_t* strides, uint32_t* offsets) const;
   void IAGetIndexBuffer(OutPtr<Buffer> buffer, FORMAT* format, uint32_t* offset) const;
-  void VSGetShader(OutPtr<VertexShader> shader) const;
-  void PSGetShader(OutPtr<PixelShader> shader) const;
-  void GSGetShader(OutPtr<GeometryShader> shader) const;
-  void CSGetShader(OutPtr<ComputeShader> shader) const;
+  void VSGetShader(OutPtr<VertexShader> shader, ClassInstance** classInstances = nullptr, uint32_t* numClassInstances = nullptr) const;
+  void PSGetShader(OutPtr<PixelShader> shader, ClassInstance** classInstances = nullptr, uint32_t* numClassInstances = nullptr) const;
+  void GSGetShader(OutPtr<GeometryShader> shader, ClassInstance** classInstances = nullptr, uint32_t* numClassInstances = nullptr) const;
+  void CSGetShader(OutPtr<ComputeShader> shader, ClassInstance** classInstances = nullptr, uint32_t* numClassInstances = nullptr) const;
   void VSGetConstantBuffers(uint32_t startSlot, uint32_t num, OutPtr<Buffer> buffers) const { GetConstantBuffers(ShaderStage::Vertex, startSlot, num, buffers, "VSGetConstantBuffers"); }
   void PSGetConstantBuffers(uint32_t startSlot, uint32_t num, OutPtr<Buffer> buffers) const { GetConstantBuffers(ShaderStage::Pixel, startSlot, num, buffers, "PSGetConstantBuffers"); }
   void GSGetConstantBuffers(uint32_t startSlot, uint32_t num, OutPtr<Buffer> buffers) const { GetConstantBuffers(ShaderStage::Geometry, startSlot, num, buffers, "GSGetConstantBuffers"); }
@@ -182,9 +184,9 @@ class DeviceContext {
   void UpdateSubresource(Resource* dst, uint32_t dstSubresource, const BOX* dstBox, const void* srcData,
                          uint32_t srcRowPitch, uint32_t srcDepthPitch);
   void CopyStructureCount(Buffer* dstBuffer, uint32_t dstAlignedByteOffset, UnorderedAccessView* srcView);
-  // Returns false only when MAP_FLAG_DO_NOT_WAIT is set and the GPU still uses the resource
-  // (D3D11's DXGI_ERROR_WAS_STILL_DRAWING).
-  bool Map(Resource* resource, uint32_t subresource, MAP mapType, uint32_t mapFlags, MAPPED_SUBRESOURCE* mapped);
+  // true (S_OK) when mapped; false (DXGI_ERROR_WAS_STILL_DRAWING) only when MAP_FLAG_DO_NOT_WAIT
+  // is set and the GPU still uses the resource. Misuse throws sp::Error as everywhere else.
+  CallStatus Map(Resource* resource, uint32_t subresource, MAP mapType, uint32_t mapFlags, MAPPED_SUBRESOURCE* mapped);
   void Unmap(Resource* resource, uint32_t subresource);
   void GenerateMips(ShaderResourceView* srv);
   void ResolveSubresource(Resource* dst, uint32_t dstSubresource, Resource* src, uint32_t srcSubresource, FORMAT format);
@@ -192,8 +194,8 @@ class DeviceContext {
   // --- Queries
   void Begin(Query* query);
   void End(Query* query);
-  // Returns true when the data is available (S_OK) and false while it is not (S_FALSE).
-  bool GetData(Query* query, void* data, uint32_t dataSize, uint32_t getDataFlags);
+  // true (S_OK) when the data is available, false (S_FALSE) while it is not.
+  CallStatus GetData(Query* query, void* data, uint32_t dataSize, uint32_t getDataFlags);
 
   void ClearState();
   void Flush();
@@ -211,7 +213,7 @@ class DeviceContext {
   void SetConstantBuffers(ShaderStage stage, uint32_t start, uint32_t num, Buffer* const* buffers, const char* call);
   void SetShaderResources(ShaderStage stage, uint32_t start, uint32_t num, ShaderResourceView* const* views, const char* call);
   void SetSamplers(ShaderStage stage, uint32_t start, uint32_t num, SamplerState* const* samplers, const char* call);
-  void SetShader(ShaderStage stage, Shader* shader, const char* call);
+  void SetShader(ShaderStage stage, Shader* shader, ClassInstance* const* instances, uint32_t numInstances, const char* call);
   void GetConstantBuffers(ShaderStage stage, uint32_t start, uint32_t num, OutPtr<Buffer> out, const char* call) const;
   void GetShaderResources(ShaderStage stage, uint32_t start, uint32_t num, OutPtr<ShaderResourceView> out, const char* call) const;
   void GetSamplers(ShaderStage stage, uint32_t start, uint32_t num, OutPtr<SamplerState> out, const char* call) const;

@@ -1,5 +1,6 @@
 // ID3D11Device mirror. Create with sp::CreateDevice; every Create* validates its arguments the way
-// D3D11 (and its debug layer) does and throws sp::Error naming the call and the object.
+// D3D11 (and its debug layer) does and throws sp::Error naming the call and the object. The
+// D3D11-shaped overloads (descs by pointer, out-pointers) report the same failures as an HRESULT.
 //
 // Threading: like a D3D11 device created with D3D11_CREATE_DEVICE_SINGLETHREADED. The OpenGL
 // backend's context is current on the creating thread only.
@@ -113,11 +114,42 @@ class Device {
 
   Ref<Query> CreateQuery(const QUERY_DESC& desc);
 
+  // --- D3D11 call shapes: `V_RETURN(dev->CreateTexture2D(&desc, NULL, &m_pTex))`.
+  // The object comes back through an OutPtr (a COM-style T**, AddRef'd, or a Ref<T>*). On failure
+  // *out is null, the result is HResultFromErrorId(error.id()), and the sp::Error's message goes
+  // to the message callback as an Error (counted in ValidationErrorCount), as D3D11's debug
+  // layer prints it. A null out-pointer only validates: S_FALSE when the call would succeed.
+  // Class linkage is not supported: a non-null ClassLinkage fails with DXGI_ERROR_UNSUPPORTED.
+  HRESULT CreateBuffer(const BUFFER_DESC* desc, const SUBRESOURCE_DATA* initialData, OutPtr<Buffer> buffer);
+  HRESULT CreateTexture1D(const TEXTURE1D_DESC* desc, const SUBRESOURCE_DATA* initialData, OutPtr<Texture1D> texture);
+  HRESULT CreateTexture2D(const TEXTURE2D_DESC* desc, const SUBRESOURCE_DATA* initialData, OutPtr<Texture2D> texture);
+  HRESULT CreateTexture3D(const TEXTURE3D_DESC* desc, const SUBRESOURCE_DATA* initialData, OutPtr<Texture3D> texture);
+  HRESULT CreateShaderResourceView(Resource* resource, const SHADER_RESOURCE_VIEW_DESC* desc, OutPtr<ShaderResourceView> view);
+  HRESULT CreateRenderTargetView(Resource* resource, const RENDER_TARGET_VIEW_DESC* desc, OutPtr<RenderTargetView> view);
+  HRESULT CreateDepthStencilView(Resource* resource, const DEPTH_STENCIL_VIEW_DESC* desc, OutPtr<DepthStencilView> view);
+  HRESULT CreateUnorderedAccessView(Resource* resource, const UNORDERED_ACCESS_VIEW_DESC* desc, OutPtr<UnorderedAccessView> view);
+  HRESULT CreateSamplerState(const SAMPLER_DESC* desc, OutPtr<SamplerState> state);
+  HRESULT CreateRasterizerState(const RASTERIZER_DESC* desc, OutPtr<RasterizerState> state);
+  HRESULT CreateDepthStencilState(const DEPTH_STENCIL_DESC* desc, OutPtr<DepthStencilState> state);
+  HRESULT CreateBlendState(const BLEND_DESC* desc, OutPtr<BlendState> state);
+  // bytecode/length: a ShaderBytecode::Serialize() blob (what blob->GetBufferPointer() and
+  // GetBufferSize() give for ShadowPort's compiled shaders).
+  HRESULT CreateInputLayout(const INPUT_ELEMENT_DESC* elements, uint32_t numElements, const void* vertexShaderBytecode,
+                            size_t length, OutPtr<InputLayout> layout);
+  HRESULT CreateVertexShader(const void* bytecode, size_t length, ClassLinkage* linkage, OutPtr<VertexShader> shader);
+  HRESULT CreatePixelShader(const void* bytecode, size_t length, ClassLinkage* linkage, OutPtr<PixelShader> shader);
+  HRESULT CreateGeometryShader(const void* bytecode, size_t length, ClassLinkage* linkage, OutPtr<GeometryShader> shader);
+  HRESULT CreateComputeShader(const void* bytecode, size_t length, ClassLinkage* linkage, OutPtr<ComputeShader> shader);
+  HRESULT CreateQuery(const QUERY_DESC* desc, OutPtr<Query> query);
+
   DeviceContext* GetImmediateContext() { return context_.get(); }
 
   // D3D11 CheckFormatSupport / CheckMultisampleQualityLevels.
   uint32_t CheckFormatSupport(FORMAT format) const;
   uint32_t CheckMultisampleQualityLevels(FORMAT format, uint32_t sampleCount) const;
+  // The HRESULT forms: E_FAIL (and 0) for a format the device cannot use at all, as D3D11.
+  HRESULT CheckFormatSupport(FORMAT format, uint32_t* formatSupport) const;
+  HRESULT CheckMultisampleQualityLevels(FORMAT format, uint32_t sampleCount, uint32_t* numQualityLevels) const;
 
   Backend GetBackend() const { return info_.backend; }
   const DeviceInfo& Info() const { return info_; }
