@@ -173,6 +173,18 @@ void GLDevice::MakeCurrent() const {
 
 void GLDevice::OnDebugMessage(GLenum source, GLenum type, GLuint id, GLenum severity, const char* message) {
   if (suppressDebugMessages || severity == GL_DEBUG_SEVERITY_NOTIFICATION) return;
+  // In a debug context Mesa checks the programs of a pipeline against OpenGL ES 3.1's exact
+  // interface matching (every output read, same types) and reports each pipeline that is not an
+  // exact match, on every run: D3D11 and desktop GL let a pixel shader read a subset of what the
+  // vertex shader writes, and the core validates the interface by D3D11's rules. That one message
+  // is dropped, by source, type and id (Mesa assigns the id on first use, so the first one is
+  // recognised by its text); every other message is reported.
+  if (source == GL_DEBUG_SOURCE_API && type == GL_DEBUG_TYPE_PORTABILITY) {
+    if (!esPipelineMessageId_ && std::strncmp(message, "glValidateProgramPipeline: pipeline ", 36) == 0 &&
+        std::strstr(message, "does not meet strict OpenGL ES 3.1 requirements"))
+      esPipelineMessageId_ = id;
+    if (esPipelineMessageId_ && id == esPipelineMessageId_) return;
+  }
   std::string text = std::string("GL ") + DebugTypeName(type) + " (id " + std::to_string(id) + "): " + message;
   if (type == GL_DEBUG_TYPE_ERROR || type == GL_DEBUG_TYPE_UNDEFINED_BEHAVIOR) Message(MessageSeverity::Error, text);
   else if (severity == GL_DEBUG_SEVERITY_HIGH || severity == GL_DEBUG_SEVERITY_MEDIUM) Message(MessageSeverity::Warning, text);

@@ -210,6 +210,9 @@ class GLDevice final : public detail::DeviceBackend {
   GLContext* context_ = nullptr;
   std::array<uint32_t, 128> support_{};
   std::array<std::vector<GLint>, 128> samples_{};
+  // Mesa's "glValidateProgramPipeline: ... does not meet strict OpenGL ES 3.1 requirements"
+  // message, once recognised (its id is assigned at run time); 0 until then.
+  GLuint esPipelineMessageId_ = 0;
 };
 
 // Entry points of the per-area files, called by GLDevice.

@@ -48,7 +48,7 @@ std::string UsageName(USAGE usage) {
 }
 
 Device::Device(const DeviceDesc& desc)
-    : callback_(desc.messageCallback) {
+    : shaderCacheDir_(desc.shaderCacheDir), callback_(desc.messageCallback) {
   info_.backend = desc.backend;
   info_.validationEnabled = desc.debug;
 }

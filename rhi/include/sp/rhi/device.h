@@ -5,6 +5,7 @@
 // Threading: like a D3D11 device created with D3D11_CREATE_DEVICE_SINGLETHREADED. The OpenGL
 // backend's context is current on the creating thread only.
 #pragma once
+#include <filesystem>
 #include <functional>
 #include <mutex>
 #include <string>
@@ -36,6 +37,9 @@ struct DeviceDesc {
   // severity are counted (ValidationErrorCount) and passed to messageCallback.
   bool debug = true;
   MessageCallback messageCallback;  // null: warnings and errors go to stderr
+  // Where the shaders the device compiles for itself (depth-bias calibration) are cached.
+  // Empty: the toolchain's default (hlsl::CompileOptions::cacheDir).
+  std::filesystem::path shaderCacheDir;
 };
 
 // What the device is, and what it measured about the driver when it started.
@@ -182,6 +186,7 @@ class Device {
   void ReleaseBackendData();
 
   DeviceInfo info_;
+  std::filesystem::path shaderCacheDir_;
   std::unique_ptr<detail::DeviceBackend> backend_;
   std::unique_ptr<DeviceContext> context_;
   MessageCallback callback_;
