@@ -5,7 +5,7 @@
 // detail::ContextBackend. sp::CreateDevice creates the backend, then the context, then runs the
 // depth-bias calibration; ~Device destroys the context, releases the backend data of every object
 // still alive and only then the backend. Backends never see an invalid call: the core validates,
-// and resolves D3D11's defaults first.
+// resolves D3D11's defaults and substitutes its null resources for unbound registers first.
 #pragma once
 #include <memory>
 #include <string_view>
@@ -113,6 +113,14 @@ class DeviceBackend {
   Device& core_;
   // The core's DeviceInfo: the backend fills in what it knows about the driver while it starts.
   DeviceInfo& info_;
+};
+
+class NullResources;
+
+// The core's private parts of sp::Device.
+struct DeviceAccess {
+  static bool StrictUnboundResources(const Device& d) { return d.strictUnboundResources_; }
+  static NullResources& Nulls(Device& d);  // made on first use
 };
 
 // Backend factories (backends/vulkan, backends/gl). `core` is the device being created; it has

@@ -287,14 +287,18 @@ void DeviceContext::OMSetBlendState(BlendState* s, const float blendFactor[4], u
 // Draw and dispatch
 
 void DeviceContext::DoDraw(const detail::DrawArgs& args, const char* call) {
-  DrawValidator::CheckDraw(*this, args, call);
-  backend_->Draw(*state_, dirty_, args);
+  std::vector<UnboundRead> unbound;
+  DrawValidator::CheckDraw(*this, args, call, unbound);
+  NullBindings nulls(*this, unbound);
+  backend_->Draw(*state_, dirty_ | nulls.Dirty(), args);
   dirty_ = 0;
 }
 
 void DeviceContext::DoDispatch(uint32_t x, uint32_t y, uint32_t z, Buffer* argsBuffer, uint32_t argsOffset, const char* call) {
-  DrawValidator::CheckDispatch(*this, call);
-  if (argsBuffer || (x && y && z)) backend_->Dispatch(*state_, dirty_, x, y, z, argsBuffer, argsOffset);
+  std::vector<UnboundRead> unbound;
+  DrawValidator::CheckDispatch(*this, call, unbound);
+  NullBindings nulls(*this, unbound);
+  if (argsBuffer || (x && y && z)) backend_->Dispatch(*state_, dirty_ | nulls.Dirty(), x, y, z, argsBuffer, argsOffset);
   dirty_ &= ~uint32_t(DIRTY_BINDINGS_CS | DIRTY_COMPUTE_UAVS);
 }
 

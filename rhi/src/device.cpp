@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "backend.h"
+#include "null-resources.h"
 #include "validate.h"
 
 namespace sp {
@@ -48,7 +49,7 @@ std::string UsageName(USAGE usage) {
 }
 
 Device::Device(const DeviceDesc& desc)
-    : shaderCacheDir_(desc.shaderCacheDir), callback_(desc.messageCallback) {
+    : strictUnboundResources_(desc.strictUnboundResources), shaderCacheDir_(desc.shaderCacheDir), callback_(desc.messageCallback) {
   info_.backend = desc.backend;
   info_.validationEnabled = desc.debug;
 }
@@ -64,6 +65,7 @@ void Device::ReleaseBackendData() {
     context_->ClearState();
     context_.reset();
   }
+  nullResources_.reset();
   std::lock_guard lock(liveMutex_);
   if (!live_.empty() && backend_) {
     Message(MessageSeverity::Warning, std::to_string(live_.size()) +

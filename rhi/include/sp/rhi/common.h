@@ -40,7 +40,7 @@ using Ref = std::shared_ptr<T>;
   X(INPUT_LAYOUT_MISMATCH)      /* element not in the VS input signature, bad format ... */    \
   X(SHADER_INTERFACE_MISMATCH)  /* PS reads a semantic the VS does not write */                \
   X(SLOT_OUT_OF_RANGE)          /* StartSlot + Num beyond the D3D11 slot count */              \
-  X(UNBOUND_RESOURCE)           /* a register the bound shader reads has nothing bound */      \
+  X(UNBOUND_RESOURCE)           /* strict mode: a register the shader reads is unbound */      \
   X(RESOURCE_TYPE_MISMATCH)     /* bound view's dimension/type differs from the shader's */    \
   X(SAMPLE_COUNT_MISMATCH)      /* RTV/DSV/shader disagree on MSAA sample counts */            \
   X(OUTPUT_MISMATCH)            /* render targets of different size, RTV+UAV slot overlap */   \

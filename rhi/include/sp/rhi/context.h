@@ -63,6 +63,7 @@ struct DrawArgs;
 class ContextBackend;
 class ContextHazards;
 class DrawValidator;
+class NullBindings;
 }  // namespace detail
 
 
@@ -209,6 +210,7 @@ class DeviceContext {
   friend Ref<Device> CreateDevice(const DeviceDesc& desc);
   friend class detail::ContextHazards;
   friend class detail::DrawValidator;
+  friend class detail::NullBindings;
   DeviceContext(Device* device, std::unique_ptr<detail::ContextBackend> backend);
   void SetConstantBuffers(ShaderStage stage, uint32_t start, uint32_t num, Buffer* const* buffers, const char* call);
   void SetShaderResources(ShaderStage stage, uint32_t start, uint32_t num, ShaderResourceView* const* views, const char* call);

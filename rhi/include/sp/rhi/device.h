@@ -23,6 +23,8 @@ class DeviceContext;
 
 namespace detail {
 class DeviceBackend;
+class NullResources;
+struct DeviceAccess;
 }  // namespace detail
 
 enum class Backend : uint8_t { Vulkan, OpenGL };
@@ -37,6 +39,10 @@ struct DeviceDesc {
   // severity are counted (ValidationErrorCount) and passed to messageCallback.
   bool debug = true;
   MessageCallback messageCallback;  // null: warnings and errors go to stderr
+  // A shader register read by a draw or dispatch with nothing bound reads zeros as in D3D11
+  // (samplers: D3D11's default sampler state; UAVs: writes are dropped), with one warning per
+  // shader and register. true: such a draw or dispatch throws SP_UNBOUND_RESOURCE instead.
+  bool strictUnboundResources = false;
   // Where the shaders the device compiles for itself (depth-bias calibration) are cached.
   // Empty: the toolchain's default (hlsl::CompileOptions::cacheDir).
   std::filesystem::path shaderCacheDir;
@@ -171,6 +177,7 @@ class Device {
   friend Ref<Device> CreateDevice(const DeviceDesc& desc);
   friend class Object;
   friend class detail::DeviceBackend;
+  friend struct detail::DeviceAccess;
   explicit Device(const DeviceDesc& desc);
   template <class T, class... A>
   Ref<T> Make(A&&... args);
@@ -186,9 +193,11 @@ class Device {
   void ReleaseBackendData();
 
   DeviceInfo info_;
+  bool strictUnboundResources_ = false;
   std::filesystem::path shaderCacheDir_;
   std::unique_ptr<detail::DeviceBackend> backend_;
   std::unique_ptr<DeviceContext> context_;
+  std::unique_ptr<detail::NullResources> nullResources_;
   MessageCallback callback_;
   uint64_t validationErrors_ = 0;
   std::string lastValidationError_;
