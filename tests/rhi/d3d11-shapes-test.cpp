@@ -291,6 +291,70 @@ TEST_P(D3D11ShapesTest, FailuresReturnD3D11CodesAndReportTheError) {
   EXPECT_EQ(device().ValidationErrorCount(), 13u);
 }
 
+// The remaining Create* shapes fail the same way.
+TEST_P(D3D11ShapesTest, EveryCreateShapeReportsFailure) {
+  CaptureErrors();
+  TEXTURE1D_DESC t1;
+  t1.Width = 0;
+  t1.Format = FORMAT_R8G8B8A8_UNORM;
+  Texture1D* tex1 = Bogus<Texture1D>();
+  ExpectFailure(device().CreateTexture1D(&t1, NULL, &tex1), E_INVALIDARG, tex1, ThrownMessage([&] { device().CreateTexture1D(t1); }));
+  TEXTURE3D_DESC t3;
+  t3.Width = t3.Height = 4;
+  t3.Depth = 0;
+  t3.Format = FORMAT_R8G8B8A8_UNORM;
+  TEXTURE3D_DESC valid = t3;
+  valid.Depth = 4;
+  valid.BindFlags = BIND_SHADER_RESOURCE;
+  Ref<Texture3D> tex3 = device().CreateTexture3D(valid);  // the Ref<T>* form is reset on failure
+  ExpectFailure(device().CreateTexture3D(&t3, NULL, &tex3), E_INVALIDARG, tex3, ThrownMessage([&] { device().CreateTexture3D(t3); }));
+
+  // Views of a texture that lacks the bind flag they need.
+  Ref<Texture2D> plain = MakeTexture2D(device(), 4, 4, FORMAT_R8G8B8A8_UNORM, BIND_SHADER_RESOURCE);
+  RenderTargetView* rtv = Bogus<RenderTargetView>();
+  ExpectFailure(device().CreateRenderTargetView(plain.get(), NULL, &rtv), E_INVALIDARG, rtv,
+                ThrownMessage([&] { device().CreateRenderTargetView(plain.get()); }));
+  DepthStencilView* dsv = Bogus<DepthStencilView>();
+  ExpectFailure(device().CreateDepthStencilView(plain.get(), NULL, &dsv), E_INVALIDARG, dsv,
+                ThrownMessage([&] { device().CreateDepthStencilView(plain.get()); }));
+  UnorderedAccessView* uav = Bogus<UnorderedAccessView>();
+  ExpectFailure(device().CreateUnorderedAccessView(plain.get(), NULL, &uav), E_INVALIDARG, uav,
+                ThrownMessage([&] { device().CreateUnorderedAccessView(plain.get()); }));
+
+  DEPTH_STENCIL_DESC dd;
+  dd.DepthFunc = COMPARISON_FUNC(0);
+  DepthStencilState* ds = Bogus<DepthStencilState>();
+  ExpectFailure(device().CreateDepthStencilState(&dd, &ds), E_INVALIDARG, ds, ThrownMessage([&] { device().CreateDepthStencilState(dd); }));
+  BLEND_DESC bd;
+  bd.RenderTarget[0].BlendEnable = true;
+  bd.RenderTarget[0].BlendOp = BLEND_OP(0);
+  BlendState* bs = Bogus<BlendState>();
+  ExpectFailure(device().CreateBlendState(&bd, &bs), E_INVALIDARG, bs, ThrownMessage([&] { device().CreateBlendState(bd); }));
+
+  VertexShader* vs = Bogus<VertexShader>();
+  EXPECT_EQ(device().CreateVertexShader(nullptr, 0, NULL, &vs), E_INVALIDARG);
+  EXPECT_EQ(vs, nullptr);
+  ASSERT_EQ(errors.size(), 1u);
+  EXPECT_NE(errors[0].find("pShaderBytecode is null"), std::string::npos) << errors[0];
+  EXPECT_EQ(device().ValidationErrorCount(), 8u);
+}
+
+TEST_P(D3D11ShapesTest, FormatSupportHresultForms) {
+  uint32_t support = 0;
+  EXPECT_EQ(device().CheckFormatSupport(FORMAT_R8G8B8A8_UNORM, &support), S_OK);
+  EXPECT_EQ(support, device().CheckFormatSupport(FORMAT_R8G8B8A8_UNORM));
+  EXPECT_NE(support & FORMAT_SUPPORT_TEXTURE2D, 0u);
+  support = 1;
+  EXPECT_EQ(device().CheckFormatSupport(FORMAT_UNKNOWN, &support), E_FAIL);
+  EXPECT_EQ(support, 0u);
+  uint32_t levels = 7;
+  EXPECT_EQ(device().CheckMultisampleQualityLevels(FORMAT_R8G8B8A8_UNORM, 1, &levels), S_OK);
+  EXPECT_EQ(levels, 1u);
+  EXPECT_EQ(device().CheckMultisampleQualityLevels(FORMAT_R8G8B8A8_UNORM, 3, &levels), S_OK);
+  EXPECT_EQ(levels, 0u);  // not a power of two
+  EXPECT_EQ(device().CheckFormatSupport(FORMAT_R8G8B8A8_UNORM, nullptr), E_INVALIDARG);
+}
+
 TEST_P(D3D11ShapesTest, NullOutPointerOnlyValidates) {
   CaptureErrors();
   TEXTURE2D_DESC td;
