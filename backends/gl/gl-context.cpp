@@ -77,10 +77,10 @@ GLContext::~GLContext() {
 // Draw
 
 void GLContext::ApplyProgram(const PipelineState& s) {
-  GLShader& vs = s.stage(ShaderStage::Vertex).shader->BackendAs<GLShader>();
+  GLShader& vs = detail::BackendAs<GLShader>(s.stage(ShaderStage::Vertex).shader);
   GLuint ps = 0;
   if (const Shader* p = s.stage(ShaderStage::Pixel).shader.get()) {
-    GLShader& g = p->BackendAs<GLShader>();
+    GLShader& g = detail::BackendAs<GLShader>(p);
     ps = g.writesTarget1 && NeedsDualSource(s) ? DualSourceProgram(dev_, g) : g.program;
   }
   GLuint& pipeline = pipelines_[{vs.program, ps}];
@@ -229,7 +229,7 @@ void GLContext::Draw(const PipelineState& s, uint32_t dirty, const detail::DrawA
 
 void GLContext::Dispatch(const PipelineState& s, uint32_t dirty, uint32_t x, uint32_t y, uint32_t z, Buffer* args, uint32_t argsOffset) {
   dev_.MakeCurrent();
-  GLShader& cs = s.stage(ShaderStage::Compute).shader->BackendAs<GLShader>();
+  GLShader& cs = detail::BackendAs<GLShader>(s.stage(ShaderStage::Compute).shader);
   SetCached(cache_.pipeline, cs.computePipeline, [&] { glBindProgramPipeline(cs.computePipeline); });
   GLbitfield barrier = 0;
   for (int pass = 0; pass < 2; ++pass) {
@@ -260,7 +260,7 @@ void GLContext::BindRange(GLenum target, GLuint index, const RangeBinding& r) {
 }
 
 void GLContext::BindUniformBlock(const Shader& shader, size_t index, const Buffer* buffer) {
-  const GlBinding& b = shader.Bytecode().glBindings[index];
+  const GlBinding& b = detail::GlBindingsOf(shader.Bytecode())[index];
   const CBufferInfo* info = shader.Reflection().FindCBuffer(b.registerIndex);
   const uint32_t declared = info ? info->size : 0;
   GLBuffer& gb = GL(buffer);  // not const: the repack may refresh its CPU copy
@@ -296,7 +296,7 @@ GLbitfield GLContext::BindStage(const PipelineState& s, ShaderStage stage) {
   const Shader* sh = sb.shader.get();
   if (!sh) return 0;
   const auto& uavs = stage == ShaderStage::Compute ? s.computeUavs : s.pixelUavs;
-  const std::vector<GlBinding>& bindings = sh->Bytecode().glBindings;
+  const std::vector<GlBinding>& bindings = detail::GlBindingsOf(sh->Bytecode());
   GLbitfield barrier = 0;
   for (size_t i = 0; i < bindings.size(); ++i) {
     const GlBinding& b = bindings[i];
@@ -305,7 +305,7 @@ GLbitfield GLContext::BindStage(const PipelineState& s, ShaderStage stage) {
         const ShaderResourceView* v = sb.shaderResources[b.registerIndex].get();
         GLuint sampler = loadSampler_;
         if (b.samplerRegister >= 0 && sb.samplers[size_t(b.samplerRegister)])
-          sampler = sb.samplers[size_t(b.samplerRegister)]->BackendAs<GLSampler>().name;
+          sampler = detail::BackendAs<GLSampler>(sb.samplers[size_t(b.samplerRegister)]).name;
         BindTexture(b.glBinding, v ? GL(v).texture : 0, sampler);
         break;
       }

@@ -3,7 +3,6 @@
 #include <cstring>
 #include <mutex>
 
-#include "backend-factory.h"
 #include "gl-context.h"
 
 namespace sp::gl {
@@ -82,7 +81,7 @@ void ThrowError(ErrorId id, const std::string& call, const std::string& object, 
   throw Error(id, call, object, detail);
 }
 
-GLDevice::GLDevice(const DeviceDesc& desc) : Device(desc) {
+GLDevice::GLDevice(Device& core, const DeviceDesc& desc) : DeviceBackend(core) {
   display_ = AcquireDisplay();
   try {
     if (!eglBindAPI(EGL_OPENGL_API)) CreationFailed("eglBindAPI(EGL_OPENGL_API) failed: " + EglErrorText());
@@ -101,8 +100,6 @@ GLDevice::GLDevice(const DeviceDesc& desc) : Device(desc) {
     Init(desc);
   } catch (...) {
     // The destructor does not run for a half-built device: release what exists here.
-    ShutdownCore();
-    context_ = nullptr;
     eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
     eglDestroyContext(display_, egl_);
     ReleaseDisplay();
@@ -151,16 +148,18 @@ void GLDevice::Init(const DeviceDesc& desc) {
 
   InitFormatSupport();
   info_.maxMsaaSamples = std::min(MaxSampleCountBackend(FORMAT_R8G8B8A8_UNORM), MaxSampleCountBackend(FORMAT_D32_FLOAT));
-
-  auto ctx = CreateGLContext(*this);
-  context_ = static_cast<GLContext*>(ctx.get());
-  InitContext(std::make_unique<DeviceContext>(this, std::move(ctx)));
-  CalibrateDepthBias();
 }
 
+std::unique_ptr<detail::ContextBackend> GLDevice::CreateContextBackend() {
+  MakeCurrent();
+  auto ctx = CreateGLContext(*this);
+  context_ = static_cast<GLContext*>(ctx.get());
+  return ctx;
+}
+
+// The core has destroyed the context and released every object's GL names before this runs.
 GLDevice::~GLDevice() {
   MakeCurrent();
-  ShutdownCore();
   if (info_.validationEnabled) glDebugMessageCallback(nullptr, nullptr);
   eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
   eglDestroyContext(display_, egl_);
@@ -174,6 +173,18 @@ void GLDevice::MakeCurrent() const {
 
 void GLDevice::OnDebugMessage(GLenum source, GLenum type, GLuint id, GLenum severity, const char* message) {
   if (suppressDebugMessages || severity == GL_DEBUG_SEVERITY_NOTIFICATION) return;
+  // In a debug context Mesa checks the programs of a pipeline against OpenGL ES 3.1's exact
+  // interface matching (every output read, same types) and reports each pipeline that is not an
+  // exact match, on every run: D3D11 and desktop GL let a pixel shader read a subset of what the
+  // vertex shader writes, and the core validates the interface by D3D11's rules. That one message
+  // is dropped, by source, type and id (Mesa assigns the id on first use, so the first one is
+  // recognised by its text); every other message is reported.
+  if (source == GL_DEBUG_SOURCE_API && type == GL_DEBUG_TYPE_PORTABILITY) {
+    if (!esPipelineMessageId_ && std::strncmp(message, "glValidateProgramPipeline: pipeline ", 36) == 0 &&
+        std::strstr(message, "does not meet strict OpenGL ES 3.1 requirements"))
+      esPipelineMessageId_ = id;
+    if (esPipelineMessageId_ && id == esPipelineMessageId_) return;
+  }
   std::string text = std::string("GL ") + DebugTypeName(type) + " (id " + std::to_string(id) + "): " + message;
   if (type == GL_DEBUG_TYPE_ERROR || type == GL_DEBUG_TYPE_UNDEFINED_BEHAVIOR) Message(MessageSeverity::Error, text);
   else if (severity == GL_DEBUG_SEVERITY_HIGH || severity == GL_DEBUG_SEVERITY_MEDIUM) Message(MessageSeverity::Warning, text);
@@ -320,6 +331,6 @@ bool GLDevice::SampleCountSupportedBackend(FORMAT format, uint32_t count) const 
 
 }  // namespace sp::gl
 
-namespace sp {
-Ref<Device> CreateGLDevice(const DeviceDesc& desc) { return std::make_shared<gl::GLDevice>(desc); }
-}  // namespace sp
+namespace sp::detail {
+std::unique_ptr<DeviceBackend> CreateGLBackend(Device& core, const DeviceDesc& desc) { return std::make_unique<gl::GLDevice>(core, desc); }
+}  // namespace sp::detail

@@ -17,9 +17,12 @@
 #include <string>
 #include <vector>
 
-#include <sp/rhi/context.h>
+#include "backend.h"
+#include "shader-bindings.h"
 
 namespace sp::gl {
+
+using namespace sp::detail;
 
 class GLDevice;
 class GLContext;
@@ -161,9 +164,11 @@ struct GLQuery : detail::BackendObject {
 // ---------------------------------------------------------------------------------------------
 // The device
 
-class GLDevice final : public Device {
+// The device backend. It owns the EGL context; the core (sp::Device) owns it, and destroys it
+// only after the immediate context and every object's GL names are gone.
+class GLDevice final : public detail::DeviceBackend {
  public:
-  explicit GLDevice(const DeviceDesc& desc);
+  GLDevice(Device& core, const DeviceDesc& desc);
   ~GLDevice() override;
 
   void MakeCurrent() const;
@@ -184,13 +189,13 @@ class GLDevice final : public Device {
   bool suppressDebugMessages = false;  // while compiling: failures are reported as sp::Error
   void OnDebugMessage(GLenum source, GLenum type, GLuint id, GLenum severity, const char* message);
 
- protected:
   std::unique_ptr<detail::BackendObject> CreateBufferBackend(Buffer& buffer, const SUBRESOURCE_DATA* init) override;
   std::unique_ptr<detail::BackendObject> CreateTextureBackend(Texture& texture, const SUBRESOURCE_DATA* init) override;
   std::unique_ptr<detail::BackendObject> CreateViewBackend(View& view) override;
   std::unique_ptr<detail::BackendObject> CreateSamplerBackend(SamplerState& sampler) override;
   std::unique_ptr<detail::BackendObject> CreateShaderBackend(Shader& shader) override;
   std::unique_ptr<detail::BackendObject> CreateQueryBackend(Query& query) override;
+  std::unique_ptr<detail::ContextBackend> CreateContextBackend() override;
   uint32_t FormatSupportBackend(FORMAT format) const override;
   uint32_t MaxSampleCountBackend(FORMAT format) const override;
   bool SampleCountSupportedBackend(FORMAT format, uint32_t count) const override;
@@ -205,6 +210,9 @@ class GLDevice final : public Device {
   GLContext* context_ = nullptr;
   std::array<uint32_t, 128> support_{};
   std::array<std::vector<GLint>, 128> samples_{};
+  // Mesa's "glValidateProgramPipeline: ... does not meet strict OpenGL ES 3.1 requirements"
+  // message, once recognised (its id is assigned at run time); 0 until then.
+  GLuint esPipelineMessageId_ = 0;
 };
 
 // Entry points of the per-area files, called by GLDevice.
@@ -246,9 +254,9 @@ void D24S8ToGL(uint32_t* texels, size_t count);
 void UploadRegion(GLTexture& t, uint32_t subresource, uint32_t x, uint32_t y, uint32_t z, uint32_t w, uint32_t h, uint32_t d,
                   const void* data, uint32_t rowPitch, uint32_t depthPitch, GLuint pbo = 0);
 
-inline GLTexture& GL(const Texture* t) { return t->BackendAs<GLTexture>(); }
-inline GLBuffer& GL(const Buffer* b) { return b->BackendAs<GLBuffer>(); }
-inline GLView& GL(const View* v) { return v->BackendAs<GLView>(); }
+inline GLTexture& GL(const Texture* t) { return detail::BackendAs<GLTexture>(t); }
+inline GLBuffer& GL(const Buffer* b) { return detail::BackendAs<GLBuffer>(b); }
+inline GLView& GL(const View* v) { return detail::BackendAs<GLView>(v); }
 
 GLenum CompareFunc(COMPARISON_FUNC f);
 

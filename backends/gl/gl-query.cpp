@@ -57,7 +57,7 @@ void GLContext::SplitOcclusionSegment() {
 
 void GLContext::Begin(Query* query) {
   dev_.MakeCurrent();
-  GLQuery& q = query->BackendAs<GLQuery>();
+  GLQuery& q = detail::BackendAs<GLQuery>(query);
   q.ended = false;
   if (q.type == QUERY_OCCLUSION) {
     q.segments.clear();
@@ -68,7 +68,7 @@ void GLContext::Begin(Query* query) {
 
 void GLContext::End(Query* query) {
   dev_.MakeCurrent();
-  GLQuery& q = query->BackendAs<GLQuery>();
+  GLQuery& q = detail::BackendAs<GLQuery>(query);
   switch (q.type) {
     case QUERY_OCCLUSION:
       activeOcclusion.erase(std::remove(activeOcclusion.begin(), activeOcclusion.end(), &q), activeOcclusion.end());
@@ -87,7 +87,7 @@ void GLContext::End(Query* query) {
 
 bool GLContext::GetData(Query* query, void* data, uint32_t size, uint32_t flags) {
   dev_.MakeCurrent();
-  GLQuery& q = query->BackendAs<GLQuery>();
+  GLQuery& q = detail::BackendAs<GLQuery>(query);
   if (!q.ended) return false;
   switch (q.type) {
     case QUERY_EVENT: {

@@ -168,8 +168,8 @@ void VulkanContext::Draw(const PipelineState& s, uint32_t dirty, const detail::D
   const VIEWPORT& vp = s.viewports[0];
   if (!(vp.Width > 0 && vp.Height > 0)) return;  // D3D11 rasterizes nothing into an empty viewport
   if (!cur_) BeginBatch();
-  VkShaderObj& vs = s.stage(ShaderStage::Vertex).shader->BackendAs<VkShaderObj>();
-  VkShaderObj* ps = s.stage(ShaderStage::Pixel).shader ? &s.stage(ShaderStage::Pixel).shader->BackendAs<VkShaderObj>() : nullptr;
+  VkShaderObj& vs = detail::BackendAs<VkShaderObj>(s.stage(ShaderStage::Vertex).shader);
+  VkShaderObj* ps = s.stage(ShaderStage::Pixel).shader ? &detail::BackendAs<VkShaderObj>(s.stage(ShaderStage::Pixel).shader) : nullptr;
   VkPipelineLayout layout = ps ? dev_->PipelineLayout({vs.setLayout, ps->setLayout}) : dev_->PipelineLayout({vs.setLayout});
   const uint32_t pipelineBits = DIRTY_SHADERS | DIRTY_INPUT_LAYOUT | DIRTY_RASTERIZER | DIRTY_DEPTH_STENCIL | DIRTY_BLEND | DIRTY_RENDER_TARGETS;
   if ((dirty & pipelineBits) || !currentPipeline_ || currentLayout_ != layout) {
@@ -276,7 +276,7 @@ void VulkanContext::Draw(const PipelineState& s, uint32_t dirty, const detail::D
 
 void VulkanContext::Dispatch(const PipelineState& s, uint32_t dirty, uint32_t x, uint32_t y, uint32_t z, Buffer* argsBuffer, uint32_t argsOffset) {
   const char* call = argsBuffer ? "DispatchIndirect" : "Dispatch";
-  VkShaderObj& cs = s.stage(ShaderStage::Compute).shader->BackendAs<VkShaderObj>();
+  VkShaderObj& cs = detail::BackendAs<VkShaderObj>(s.stage(ShaderStage::Compute).shader);
   const VkPhysicalDeviceLimits& lim = dev_->props.limits;
   if (x > lim.maxComputeWorkGroupCount[0] || y > lim.maxComputeWorkGroupCount[1] || z > lim.maxComputeWorkGroupCount[2])
     Throw(ErrorId::NOT_SUPPORTED, call, DescribeObject(cs.owner), "the thread-group count exceeds this device's maxComputeWorkGroupCount");

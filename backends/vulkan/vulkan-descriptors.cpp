@@ -86,7 +86,7 @@ void VulkanContext::TrackStageResources(const PipelineState& s, ShaderStage stag
         break;
       }
       case RegisterClass::Sampler:
-        b.samplers[sb.reg]->BackendAs<VkSamplerObj>().lastUse = serial;
+        detail::BackendAs<VkSamplerObj>(b.samplers[sb.reg]).lastUse = serial;
         break;
       case RegisterClass::UnorderedAccess: {
         VkViewObj& v = ViewOf(UavAt(s, stage, sb.reg));
@@ -140,7 +140,7 @@ void VulkanContext::ResolveDescriptors(const PipelineState& s, ShaderStage stage
         break;
       }
       case RegisterClass::Sampler:
-        it.sampler = b.samplers[sb.reg]->BackendAs<VkSamplerObj>().sampler;
+        it.sampler = detail::BackendAs<VkSamplerObj>(b.samplers[sb.reg]).sampler;
         break;
       case RegisterClass::UnorderedAccess: {
         const UnorderedAccessView* uav = UavAt(s, stage, sb.reg);

@@ -6,7 +6,6 @@
 #include <cstdlib>
 #include <cstring>
 
-#include "backend-factory.h"
 #include "vulkan-internal.h"
 
 namespace sp::vk {
@@ -30,7 +29,7 @@ void ThrowVk(VkResult r, const char* call, const std::string& object, const char
   ErrorId id = ErrorId::DEVICE_API_ERROR;
   std::string detail = std::string(what) + " returned " + ResultName(r) + " (" + std::to_string(int(r)) + ")";
   if (r == VK_ERROR_OUT_OF_DEVICE_MEMORY || r == VK_ERROR_OUT_OF_HOST_MEMORY) {
-    id = ErrorId::SIZE_OUT_OF_RANGE;
+    id = ErrorId::OUT_OF_MEMORY;
     detail += ": the device ran out of memory";
   } else if (r == VK_ERROR_FORMAT_NOT_SUPPORTED) {
     id = ErrorId::FORMAT_UNSUPPORTED;
@@ -72,7 +71,7 @@ std::string Lower(std::string s) {
 
 }  // namespace
 
-VulkanDevice::VulkanDevice(const DeviceDesc& desc) : Device(desc) {
+VulkanDevice::VulkanDevice(Device& core, const DeviceDesc& desc) : DeviceBackend(core) {
   try {
     CreateInstance(desc.debug);
     PickPhysicalDevice();
@@ -81,21 +80,23 @@ VulkanDevice::VulkanDevice(const DeviceDesc& desc) : Device(desc) {
     alloc.Init(this);
     VkPipelineCacheCreateInfo pci{VK_STRUCTURE_TYPE_PIPELINE_CACHE_CREATE_INFO};
     Check(vkCreatePipelineCache(device, &pci, nullptr, &pipelineCache), "CreateDevice", "vulkan", "vkCreatePipelineCache");
-    auto context = std::make_unique<VulkanContext>(this);
-    ctx = context.get();
-    InitContext(std::make_unique<DeviceContext>(this, std::move(context)));
-    CalibrateDepthBias();
   } catch (...) {
     Teardown();
     throw;
   }
 }
 
+std::unique_ptr<detail::ContextBackend> VulkanDevice::CreateContextBackend() {
+  auto context = std::make_unique<VulkanContext>(this);
+  ctx = context.get();
+  return context;
+}
+
 VulkanDevice::~VulkanDevice() { Teardown(); }
 
+// The core has destroyed the context and released every object's Vulkan data before this runs;
+// their destruction is deferred until the GPU is done with them, which is now.
 void VulkanDevice::Teardown() {
-  // Unbinds everything and releases what the application still holds while Vulkan is alive.
-  ShutdownCore();
   if (device) {
     vkDeviceWaitIdle(device);
     completedSerial = recordingSerial;
@@ -547,6 +548,6 @@ std::unique_ptr<detail::BackendObject> VulkanDevice::CreateQueryBackend(Query& q
 
 }  // namespace sp::vk
 
-namespace sp {
-Ref<Device> CreateVulkanDevice(const DeviceDesc& desc) { return std::make_shared<vk::VulkanDevice>(desc); }
-}  // namespace sp
+namespace sp::detail {
+std::unique_ptr<DeviceBackend> CreateVulkanBackend(Device& core, const DeviceDesc& desc) { return std::make_unique<vk::VulkanDevice>(core, desc); }
+}  // namespace sp::detail

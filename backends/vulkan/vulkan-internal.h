@@ -15,9 +15,12 @@
 #include <unordered_map>
 #include <vector>
 
-#include <sp/rhi/context.h>
+#include "backend.h"
+#include "shader-bindings.h"
 
 namespace sp::vk {
+
+using namespace sp::detail;
 
 class VulkanDevice;
 class VulkanContext;
@@ -361,9 +364,11 @@ struct Features {
   bool indirectIgnoresIndexOffset = false;
 };
 
-class VulkanDevice final : public Device {
+// The device backend. The core (sp::Device) owns it, and destroys it only after the immediate
+// context and every object's Vulkan data are gone.
+class VulkanDevice final : public detail::DeviceBackend {
  public:
-  explicit VulkanDevice(const DeviceDesc& desc);
+  VulkanDevice(Device& core, const DeviceDesc& desc);
   ~VulkanDevice() override;
 
   VkInstance instance = VK_NULL_HANDLE;
@@ -399,13 +404,13 @@ class VulkanDevice final : public Device {
   VkFormatFeatureFlags2 OptimalFeatures(VkFormat f) const;
   float DepthBiasScale(VkFormat depthFormat) const;
 
- protected:
   std::unique_ptr<detail::BackendObject> CreateBufferBackend(Buffer& buffer, const SUBRESOURCE_DATA* init) override;
   std::unique_ptr<detail::BackendObject> CreateTextureBackend(Texture& texture, const SUBRESOURCE_DATA* init) override;
   std::unique_ptr<detail::BackendObject> CreateViewBackend(View& view) override;
   std::unique_ptr<detail::BackendObject> CreateSamplerBackend(SamplerState& sampler) override;
   std::unique_ptr<detail::BackendObject> CreateShaderBackend(Shader& shader) override;
   std::unique_ptr<detail::BackendObject> CreateQueryBackend(Query& query) override;
+  std::unique_ptr<detail::ContextBackend> CreateContextBackend() override;
   uint32_t FormatSupportBackend(FORMAT format) const override;
   uint32_t MaxSampleCountBackend(FORMAT format) const override;
   bool SampleCountSupportedBackend(FORMAT format, uint32_t count) const override;
@@ -441,9 +446,9 @@ void ReleaseBufferRange(VulkanDevice* dev, BufferRange& r, uint64_t serial);
 void MergePlanes(VkTextureObj& t);
 void SplitPlanes(VkTextureObj& t);
 
-inline VkBufferObj& BufferOf(const Resource* r) { return r->BackendAs<VkBufferObj>(); }
-inline VkTextureObj& TextureOf(const Resource* r) { return r->BackendAs<VkTextureObj>(); }
-inline VkViewObj& ViewOf(const View* v) { return v->BackendAs<VkViewObj>(); }
+inline VkBufferObj& BufferOf(const Resource* r) { return detail::BackendAs<VkBufferObj>(r); }
+inline VkTextureObj& TextureOf(const Resource* r) { return detail::BackendAs<VkTextureObj>(r); }
+inline VkViewObj& ViewOf(const View* v) { return detail::BackendAs<VkViewObj>(v); }
 
 // ---------------------------------------------------------------------------------------------
 // The immediate context

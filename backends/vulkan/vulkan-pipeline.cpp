@@ -98,8 +98,8 @@ bool Blendable(VulkanDevice* dev, VkFormat f) {
 }  // namespace
 
 VkPipeline VulkanContext::GraphicsPipeline(const PipelineState& s, VkPipelineLayout layout, const char* call) {
-  VkShaderObj& vs = s.stage(ShaderStage::Vertex).shader->BackendAs<VkShaderObj>();
-  VkShaderObj* ps = s.stage(ShaderStage::Pixel).shader ? &s.stage(ShaderStage::Pixel).shader->BackendAs<VkShaderObj>() : nullptr;
+  VkShaderObj& vs = detail::BackendAs<VkShaderObj>(s.stage(ShaderStage::Vertex).shader);
+  VkShaderObj* ps = s.stage(ShaderStage::Pixel).shader ? &detail::BackendAs<VkShaderObj>(s.stage(ShaderStage::Pixel).shader) : nullptr;
   const RASTERIZER_DESC& rd = s.rasterizer();
   DEPTH_STENCIL_DESC dd = s.depthStencilDesc();
   const BLEND_DESC& bd = s.blend();

@@ -69,7 +69,7 @@ void VulkanContext::ForgetQuery(VkQueryObj* q) {
 }
 
 void VulkanContext::Begin(Query* query) {
-  VkQueryObj& q = query->BackendAs<VkQueryObj>();
+  VkQueryObj& q = detail::BackendAs<VkQueryObj>(query);
   q.issued = false;
   q.active = true;
   if (q.type != QUERY_OCCLUSION) return;
@@ -82,7 +82,7 @@ void VulkanContext::Begin(Query* query) {
 }
 
 void VulkanContext::End(Query* query) {
-  VkQueryObj& q = query->BackendAs<VkQueryObj>();
+  VkQueryObj& q = detail::BackendAs<VkQueryObj>(query);
   switch (q.type) {
     case QUERY_OCCLUSION:
       Cmd();
@@ -107,7 +107,7 @@ void VulkanContext::End(Query* query) {
 }
 
 bool VulkanContext::GetData(Query* query, void* data, uint32_t size, uint32_t flags) {
-  VkQueryObj& q = query->BackendAs<VkQueryObj>();
+  VkQueryObj& q = detail::BackendAs<VkQueryObj>(query);
   if (!q.issued) return false;
   if (q.endSerial >= dev_->recordingSerial) {
     if (flags & ASYNC_GETDATA_DONOTFLUSH) return false;

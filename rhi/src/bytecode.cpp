@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bytecode-json.h"
+#include "shader-bindings.h"
 
 namespace sp {
 
@@ -206,7 +207,7 @@ std::string BytecodeToJson(const ShaderBytecode& b, const json& extra) {
   j["inputs"] = SignatureToJson(r.inputs);
   j["outputs"] = SignatureToJson(r.outputs);
   json gl = json::array();
-  for (const GlBinding& g : b.glBindings) {
+  for (const GlBinding& g : detail::GlBindingsOf(b)) {
     json e = {{"kind", NameOf(kGlKindNames, g.kind)},
               {"binding", g.glBinding},
               {"register", std::string(1, RegisterClassLetter(g.registerClass)) + std::to_string(g.registerIndex)}};
@@ -264,6 +265,7 @@ ShaderBytecode BytecodeFromJson(const std::string& text, std::vector<uint32_t> s
   }
   r.inputs = SignatureFromJson(j.at("inputs"));
   r.outputs = SignatureFromJson(j.at("outputs"));
+  std::vector<GlBinding> glBindings;
   for (const json& e : j.at("glBindings")) {
     GlBinding g;
     g.kind = ValueOf(kGlKindNames, e.at("kind").get<std::string>());
@@ -277,8 +279,9 @@ ShaderBytecode BytecodeFromJson(const std::string& text, std::vector<uint32_t> s
       g.glBlockSize = e.at("std140Size").get<uint32_t>();
       for (const json& c : e["repack"]) g.repack.push_back({c[0].get<uint32_t>(), c[1].get<uint32_t>(), c[2].get<uint32_t>()});
     }
-    b.glBindings.push_back(std::move(g));
+    glBindings.push_back(std::move(g));
   }
+  detail::SetGlBindings(b, std::move(glBindings));
   b.spirv = std::move(spirv);
   b.glsl = std::move(glsl);
   if (extra) *extra = j;
@@ -350,4 +353,27 @@ ShaderBytecode ShaderBytecode::Deserialize(const void* data, size_t size) {
   return {};
 }
 
+namespace detail {
+
+const std::vector<GlBinding>& GlBindingsOf(const ShaderBytecode& b) {
+  static const std::vector<GlBinding> kNone;
+  return b.glLayout ? b.glLayout->bindings : kNone;
+}
+
+void SetGlBindings(ShaderBytecode& b, std::vector<GlBinding> bindings) {
+  auto layout = std::make_shared<GlProgramLayout>();
+  layout->bindings = std::move(bindings);
+  b.glLayout = std::move(layout);
+}
+
+bool TextureIsCompared(const ShaderBytecode& b, uint32_t textureRegister) {
+  for (const GlBinding& g : GlBindingsOf(b)) {
+    if (g.kind != GlBindingKind::CombinedSampler || g.registerIndex != textureRegister || g.samplerRegister < 0) continue;
+    const ShaderResourceBinding* s = b.reflection.FindResource(RegisterClass::Sampler, uint32_t(g.samplerRegister));
+    if (s && s->type == ShaderResourceType::ComparisonSampler) return true;
+  }
+  return false;
+}
+
+}  // namespace detail
 }  // namespace sp

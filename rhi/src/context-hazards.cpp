@@ -8,6 +8,7 @@
 #include "validate.h"
 
 namespace sp {
+using namespace detail;
 namespace {
 
 // The part of a view that is written when it is bound for output.
@@ -50,16 +51,16 @@ void ForEachOutput(const PipelineState& s, Fn fn) {
 
 }  // namespace
 
-bool ContextHazards::ViewWritesOverlap(const View* a, const View* b) {
+bool detail::ContextHazards::ViewWritesOverlap(const View* a, const View* b) {
   ViewRange wb;
   if (!WrittenRange(b, &wb)) return false;
   return Overlaps(a, b->GetResource(), wb);
 }
 
-ShaderResourceView* ContextHazards::FilterInput(DeviceContext& ctx, ShaderResourceView* srv, const char* call, ShaderStage stage, uint32_t slot) {
+ShaderResourceView* detail::ContextHazards::FilterInput(DeviceContext& ctx, ShaderResourceView* srv, const char* call, ShaderStage stage, uint32_t slot) {
   if (!srv) return nullptr;
   std::string conflict;
-  ForEachOutput(ctx.state_, [&](const View* out, const std::string& what) {
+  ForEachOutput((*ctx.state_), [&](const View* out, const std::string& what) {
     if (conflict.empty() && Overlaps(out, srv->GetResource(), srv->Range())) conflict = what;
   });
   if (conflict.empty()) return srv;
@@ -69,11 +70,11 @@ ShaderResourceView* ContextHazards::FilterInput(DeviceContext& ctx, ShaderResour
   return nullptr;
 }
 
-Buffer* ContextHazards::FilterInputBuffer(DeviceContext& ctx, Buffer* buffer, const char* call, const char* what, uint32_t slot) {
+Buffer* detail::ContextHazards::FilterInputBuffer(DeviceContext& ctx, Buffer* buffer, const char* call, const char* what, uint32_t slot) {
   if (!buffer) return nullptr;
   std::string conflict;
   ViewRange whole = WholeBuffer(buffer);
-  ForEachOutput(ctx.state_, [&](const View* out, const std::string& desc) {
+  ForEachOutput((*ctx.state_), [&](const View* out, const std::string& desc) {
     if (conflict.empty() && Overlaps(out, buffer, whole)) conflict = desc;
   });
   if (conflict.empty()) return buffer;
@@ -82,8 +83,8 @@ Buffer* ContextHazards::FilterInputBuffer(DeviceContext& ctx, Buffer* buffer, co
   return nullptr;
 }
 
-void ContextHazards::UnbindForOutput(DeviceContext& ctx, const View* output, bool outputIsCompute, const char* call) {
-  PipelineState& s = ctx.state_;
+void detail::ContextHazards::UnbindForOutput(DeviceContext& ctx, const View* output, bool outputIsCompute, const char* call) {
+  PipelineState& s = (*ctx.state_);
   auto warn = [&](const std::string& where) {
     ctx.device_->Message(MessageSeverity::Warning, std::string(call) + ": " + Describe(output->GetResource()) +
                                                        " is now bound for output; as in D3D11 it was unbound from " + where);

@@ -1,9 +1,23 @@
-// Internal pieces of the immediate context: D3D11's input/output hazard rules and draw-time
-// validation. Both work on the core's PipelineState only.
+// Internal pieces of the immediate context: D3D11's input/output hazard rules, draw-time
+// validation and the null bindings that stand in for unbound registers. All work on the core's
+// PipelineState only.
 #pragma once
 #include <sp/rhi/context.h>
 
+#include <vector>
+
+#include "pipeline-state.h"
+
 namespace sp {
+
+std::string SlotName(ShaderStage stage, char cls, uint32_t slot);  // "PS slot t3"
+
+template <class T>
+Ref<T> RefOf(T* p) {
+  return p ? std::static_pointer_cast<T>(p->shared_from_this()) : Ref<T>();
+}
+
+namespace detail {
 
 class ContextHazards {
  public:
@@ -17,12 +31,46 @@ class ContextHazards {
   static bool ViewWritesOverlap(const View* output, const View* other);
 };
 
-class DrawValidator {
- public:
-  static void CheckDraw(DeviceContext& ctx, const detail::DrawArgs& args, const char* call);
-  static void CheckDispatch(DeviceContext& ctx, const char* call);
+// A register the bound shader reads with nothing bound there. `binding` is null for constant
+// buffers (`cbuffer` names them) and set for t, s and u registers.
+struct UnboundRead {
+  const Shader* shader = nullptr;
+  ShaderStage stage = ShaderStage::Vertex;
+  RegisterClass registerClass = RegisterClass::ShaderResource;
+  uint32_t registerIndex = 0;
+  const ShaderResourceBinding* binding = nullptr;
+  const CBufferInfo* cbuffer = nullptr;
 };
 
-std::string SlotName(ShaderStage stage, char cls, uint32_t slot);  // "PS slot t3"
+class DrawValidator {
+ public:
+  // Throw for what D3D11's debug layer reports as an error. Registers the shaders read with
+  // nothing bound are collected in `unbound` (or throw SP_UNBOUND_RESOURCE on a strict device).
+  static void CheckDraw(DeviceContext& ctx, const DrawArgs& args, const char* call, std::vector<UnboundRead>& unbound);
+  static void CheckDispatch(DeviceContext& ctx, const char* call, std::vector<UnboundRead>& unbound);
+};
 
+// For one draw or dispatch: puts the device's null resources into the unbound slots the shaders
+// read (so the backend sees a complete state), warns once per shader and register, and empties
+// the slots again when it goes out of scope, so the application's state is unchanged.
+class NullBindings {
+ public:
+  NullBindings(DeviceContext& ctx, const std::vector<UnboundRead>& unbound);
+  ~NullBindings();
+  NullBindings(const NullBindings&) = delete;
+  NullBindings& operator=(const NullBindings&) = delete;
+  // Dirty bits for the stages whose slots were filled: the backend may have cached other objects
+  // there.
+  uint32_t Dirty() const { return dirty_; }
+
+ private:
+  PipelineState& state_;
+  std::vector<Ref<Buffer>*> buffers_;
+  std::vector<Ref<ShaderResourceView>*> views_;
+  std::vector<Ref<SamplerState>*> samplers_;
+  std::vector<Ref<UnorderedAccessView>*> uavs_;
+  uint32_t dirty_ = 0;
+};
+
+}  // namespace detail
 }  // namespace sp

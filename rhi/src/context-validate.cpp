@@ -1,10 +1,13 @@
 // Draw- and dispatch-time checks: what the D3D11 debug layer reports as errors when a draw would
-// read something unbound or of the wrong kind. Here they throw, so a port fails loudly instead of
-// rendering a silently wrong image.
+// read something of the wrong kind. Here they throw, so a port fails loudly instead of rendering a
+// silently wrong image. Registers read with nothing bound are collected for NullBindings (D3D11
+// reads zeros there), or throw on a device created with strictUnboundResources.
 #include "context-internal.h"
+#include "null-resources.h"
 #include "validate.h"
 
 namespace sp {
+using namespace detail;
 namespace {
 
 const char* ComponentName(ComponentType t) {
@@ -49,12 +52,27 @@ struct Checker {
   DeviceContext& ctx;
   const PipelineState& s;
   const char* call;
+  std::vector<UnboundRead>& unbound;
+  bool strict;
 
   [[noreturn]] void fail(ErrorId id, const Shader* sh, const std::string& detail) const { Fail(id, call, Describe(sh), detail); }
 
+  void missing(const Shader* sh, ShaderStage stage, RegisterClass cls, uint32_t reg, const ShaderResourceBinding* r,
+               const CBufferInfo* cb, const std::string& detail) const {
+    if (strict) fail(ErrorId::UNBOUND_RESOURCE, sh, detail);
+    for (UnboundRead& u : unbound) {
+      if (u.stage != stage || u.registerClass != cls || u.registerIndex != reg) continue;
+      // A UAV and its hidden counter share the register: keep the binding that describes the UAV.
+      if (r && u.binding && u.binding->type == ShaderResourceType::UavCounter) u.binding = r;
+      return;
+    }
+    unbound.push_back({sh, stage, cls, reg, r, cb});
+  }
+
   void checkSrv(const Shader* sh, ShaderStage stage, const ShaderResourceBinding& r, const ShaderResourceView* v) const {
     std::string slot = SlotName(stage, 't', r.registerIndex) + " ('" + r.name + "')";
-    if (!v) fail(ErrorId::UNBOUND_RESOURCE, sh, "the shader reads " + slot + " but no shader resource view is bound there");
+    if (!v) return missing(sh, stage, RegisterClass::ShaderResource, r.registerIndex, &r, nullptr,
+                           "the shader reads " + slot + " but no shader resource view is bound there");
     const SHADER_RESOURCE_VIEW_DESC& d = v->GetDesc();
     const Buffer* buf = AsBuffer(v->GetResource());
     bool structured = buf && (buf->GetDesc().MiscFlags & RESOURCE_MISC_BUFFER_STRUCTURED);
@@ -91,8 +109,9 @@ struct Checker {
   void checkUav(const Shader* sh, ShaderStage stage, const ShaderResourceBinding& r, const UnorderedAccessView* v) const {
     std::string slot = SlotName(stage, 'u', r.registerIndex) + " ('" + r.name + "')";
     if (!v)
-      fail(ErrorId::UNBOUND_RESOURCE, sh, "the shader writes " + slot + " but no unordered access view is bound there (" +
-                                              (stage == ShaderStage::Compute ? "CSSetUnorderedAccessViews" : "OMSetRenderTargetsAndUnorderedAccessViews") + ")");
+      return missing(sh, stage, RegisterClass::UnorderedAccess, r.registerIndex, &r, nullptr,
+                     "the shader writes " + slot + " but no unordered access view is bound there (" +
+                         (stage == ShaderStage::Compute ? "CSSetUnorderedAccessViews" : "OMSetRenderTargetsAndUnorderedAccessViews") + ")");
     const UNORDERED_ACCESS_VIEW_DESC& d = v->GetDesc();
     const Buffer* buf = AsBuffer(v->GetResource());
     bool structured = buf && (buf->GetDesc().MiscFlags & RESOURCE_MISC_BUFFER_STRUCTURED);
@@ -128,9 +147,12 @@ struct Checker {
     const ShaderReflection& refl = sh->Reflection();
     for (const CBufferInfo& cb : refl.cbuffers) {
       const Buffer* buf = b.constantBuffers[cb.registerIndex].get();
-      if (!buf)
-        fail(ErrorId::UNBOUND_RESOURCE, sh, "the shader reads " + SlotName(stage, 'b', cb.registerIndex) + " ('" + cb.name + "', " + std::to_string(cb.size) +
-                                                " bytes) but no constant buffer is bound there");
+      if (!buf) {
+        missing(sh, stage, RegisterClass::ConstantBuffer, cb.registerIndex, nullptr, &cb,
+                "the shader reads " + SlotName(stage, 'b', cb.registerIndex) + " ('" + cb.name + "', " + std::to_string(cb.size) +
+                    " bytes) but no constant buffer is bound there");
+        continue;
+      }
       if (buf->GetDesc().ByteWidth < cb.size)
         ctx.GetDevice()->Message(MessageSeverity::Warning, std::string(call) + ": " + Describe(buf) + " at " + SlotName(stage, 'b', cb.registerIndex) +
                                                                " is smaller than cbuffer '" + cb.name + "' (" + std::to_string(cb.size) +
@@ -144,7 +166,10 @@ struct Checker {
         case RegisterClass::Sampler: {
           const SamplerState* smp = b.samplers[r.registerIndex].get();
           std::string slot = SlotName(stage, 's', r.registerIndex) + " ('" + r.name + "')";
-          if (!smp) fail(ErrorId::UNBOUND_RESOURCE, sh, "the shader samples with " + slot + " but no sampler state is bound there");
+          if (!smp) {
+            missing(sh, stage, RegisterClass::Sampler, r.registerIndex, &r, nullptr, "the shader samples with " + slot + " but no sampler state is bound there");
+            break;
+          }
           bool cmp = FilterIsComparison(smp->GetDesc().Filter);
           if (r.type == ShaderResourceType::ComparisonSampler && !cmp)
             fail(ErrorId::RESOURCE_TYPE_MISMATCH, sh, slot + " is a SamplerComparisonState but " + Describe(smp) + " has no comparison filter");
@@ -157,7 +182,11 @@ struct Checker {
             // A UAV used only through IncrementCounter/DecrementCounter appears as its counter alone.
             const UnorderedAccessView* v = (stage == ShaderStage::Pixel ? s.pixelUavs : s.computeUavs)[r.registerIndex].get();
             std::string slot = SlotName(stage, 'u', r.registerIndex) + " ('" + r.name + "')";
-            if (!v) fail(ErrorId::UNBOUND_RESOURCE, sh, "the shader uses the counter of " + slot + " but no unordered access view is bound there");
+            if (!v) {
+              missing(sh, stage, RegisterClass::UnorderedAccess, r.registerIndex, &r, nullptr,
+                      "the shader uses the counter of " + slot + " but no unordered access view is bound there");
+              break;
+            }
             if (!AsBuffer(v->GetResource()) || !(v->GetDesc().Buffer.Flags & (BUFFER_UAV_FLAG_APPEND | BUFFER_UAV_FLAG_COUNTER)))
               fail(ErrorId::RESOURCE_TYPE_MISMATCH, sh, slot + " uses the hidden counter but " + Describe(v) + " was created without BUFFER_UAV_FLAG_APPEND or _COUNTER");
             break;
@@ -175,9 +204,9 @@ struct Checker {
 
 }  // namespace
 
-void DrawValidator::CheckDraw(DeviceContext& ctx, const detail::DrawArgs& args, const char* call) {
-  const PipelineState& s = ctx.State();
-  Checker c{ctx, s, call};
+void DrawValidator::CheckDraw(DeviceContext& ctx, const DrawArgs& args, const char* call, std::vector<UnboundRead>& unbound) {
+  const PipelineState& s = *ctx.state_;
+  Checker c{ctx, s, call, unbound, DeviceAccess::StrictUnboundResources(*ctx.GetDevice())};
   const Shader* vs = s.stage(ShaderStage::Vertex).shader.get();
   if (!vs) Fail(ErrorId::DRAW_STATE_INVALID, call, "pipeline", "no vertex shader is bound (VSSetShader)");
   if (s.topology == PRIMITIVE_TOPOLOGY_UNDEFINED) Fail(ErrorId::DRAW_STATE_INVALID, call, "pipeline", "no primitive topology is set (IASetPrimitiveTopology)");
@@ -203,7 +232,7 @@ void DrawValidator::CheckDraw(DeviceContext& ctx, const detail::DrawArgs& args, 
                                                                   std::to_string(attr->slot) + " but no vertex buffer is bound there");
     }
   }
-  bool indexed = args.kind == detail::DrawArgs::DrawIndexed || args.kind == detail::DrawArgs::DrawIndexedInstancedIndirect;
+  bool indexed = args.kind == DrawArgs::DrawIndexed || args.kind == DrawArgs::DrawIndexedInstancedIndirect;
   if (indexed && !s.indexBuffer) Fail(ErrorId::DRAW_STATE_INVALID, call, "pipeline", "indexed draw without an index buffer (IASetIndexBuffer)");
 
   // Shader interface: what the pixel shader reads must be written by the vertex shader.
@@ -240,10 +269,10 @@ void DrawValidator::CheckDraw(DeviceContext& ctx, const detail::DrawArgs& args, 
   }
 }
 
-void DrawValidator::CheckDispatch(DeviceContext& ctx, const char* call) {
-  const PipelineState& s = ctx.State();
+void DrawValidator::CheckDispatch(DeviceContext& ctx, const char* call, std::vector<UnboundRead>& unbound) {
+  const PipelineState& s = *ctx.state_;
   if (!s.stage(ShaderStage::Compute).shader) Fail(ErrorId::DRAW_STATE_INVALID, call, "pipeline", "no compute shader is bound (CSSetShader)");
-  Checker c{ctx, s, call};
+  Checker c{ctx, s, call, unbound, DeviceAccess::StrictUnboundResources(*ctx.GetDevice())};
   c.checkStage(ShaderStage::Compute);
 }
 

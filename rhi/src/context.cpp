@@ -14,23 +14,22 @@ static const RASTERIZER_DESC kDefaultRasterizer{};
 static const DEPTH_STENCIL_DESC kDefaultDepthStencil{};
 static const BLEND_DESC kDefaultBlend{};
 
+namespace detail {
 const RASTERIZER_DESC& PipelineState::rasterizer() const { return rasterizerState ? rasterizerState->GetDesc() : kDefaultRasterizer; }
 const DEPTH_STENCIL_DESC& PipelineState::depthStencilDesc() const {
   return depthStencilState ? depthStencilState->GetDesc() : kDefaultDepthStencil;
 }
 const BLEND_DESC& PipelineState::blend() const { return blendState ? blendState->GetDesc() : kDefaultBlend; }
+}  // namespace detail
+
+using namespace detail;
 
 std::string SlotName(ShaderStage stage, char cls, uint32_t slot) {
   return std::string(ShaderStagePrefix(stage)) + " slot " + cls + std::to_string(slot);
 }
 
-template <class T>
-static Ref<T> RefOf(T* p) {
-  return p ? std::static_pointer_cast<T>(p->shared_from_this()) : Ref<T>();
-}
-
 DeviceContext::DeviceContext(Device* device, std::unique_ptr<detail::ContextBackend> backend)
-    : device_(device), backend_(std::move(backend)) {}
+    : device_(device), backend_(std::move(backend)), state_(std::make_unique<PipelineState>()), dirty_(DIRTY_ALL) {}
 
 DeviceContext::~DeviceContext() = default;
 
@@ -49,7 +48,7 @@ static void CheckSlots(uint32_t start, uint32_t num, uint32_t limit, const char*
 
 void DeviceContext::IASetInputLayout(InputLayout* layout) {
   CheckOwner(device_, layout, "IASetInputLayout");
-  state_.inputLayout = RefOf(layout);
+  state_->inputLayout = RefOf(layout);
   dirty_ |= DIRTY_INPUT_LAYOUT;
 }
 
@@ -57,7 +56,7 @@ void DeviceContext::IASetPrimitiveTopology(PRIMITIVE_TOPOLOGY t) {
   if (t > PRIMITIVE_TOPOLOGY_TRIANGLESTRIP)
     Fail(ErrorId::NOT_SUPPORTED, "IASetPrimitiveTopology", "topology " + std::to_string(uint32_t(t)),
          "supported topologies: POINTLIST, LINELIST, LINESTRIP, TRIANGLELIST, TRIANGLESTRIP");
-  state_.topology = t;
+  state_->topology = t;
   dirty_ |= DIRTY_INPUT_LAYOUT;
 }
 
@@ -70,10 +69,10 @@ void DeviceContext::IASetVertexBuffers(uint32_t start, uint32_t num, Buffer* con
     CheckOwner(device_, b, call);
     if (b && !(b->GetDesc().BindFlags & BIND_VERTEX_BUFFER))
       Fail(ErrorId::BIND_FLAGS_INVALID, call, Describe(b), "the buffer was not created with BIND_VERTEX_BUFFER");
-    b = ContextHazards::FilterInputBuffer(*this, b, call, "vertex buffer slot", start + i);
-    state_.vertexBuffers[start + i] = RefOf(b);
-    state_.vertexStrides[start + i] = strides[i];
-    state_.vertexOffsets[start + i] = offsets[i];
+    b = detail::ContextHazards::FilterInputBuffer(*this, b, call, "vertex buffer slot", start + i);
+    state_->vertexBuffers[start + i] = RefOf(b);
+    state_->vertexStrides[start + i] = strides[i];
+    state_->vertexOffsets[start + i] = offsets[i];
   }
   dirty_ |= DIRTY_VERTEX_BUFFERS;
 }
@@ -87,27 +86,30 @@ void DeviceContext::IASetIndexBuffer(Buffer* b, FORMAT format, uint32_t offset) 
     Fail(ErrorId::FORMAT_UNSUPPORTED, call, Describe(b), "index format must be R16_UINT or R32_UINT (got " + std::string(FormatName(format)) + ")");
   if (b && offset % (format == FORMAT_R16_UINT ? 2 : 4))
     Fail(ErrorId::INVALID_ARGUMENT, call, Describe(b), "offset must be a multiple of the index size");
-  b = ContextHazards::FilterInputBuffer(*this, b, call, "index buffer", 0);
-  state_.indexBuffer = RefOf(b);
-  state_.indexFormat = format;
-  state_.indexOffset = offset;
+  b = detail::ContextHazards::FilterInputBuffer(*this, b, call, "index buffer", 0);
+  state_->indexBuffer = RefOf(b);
+  state_->indexFormat = format;
+  state_->indexOffset = offset;
   dirty_ |= DIRTY_INDEX_BUFFER;
 }
 
 // ---------------------------------------------------------------------------------------------
 // Shader stages
 
-void DeviceContext::SetShader(ShaderStage stage, Shader* shader, const char* call) {
+void DeviceContext::SetShader(ShaderStage stage, Shader* shader, ClassInstance* const* instances, uint32_t numInstances, const char* call) {
   CheckOwner(device_, shader, call);
+  if (instances || numInstances)
+    Fail(ErrorId::NOT_SUPPORTED, call, Describe(shader),
+         "D3D11 class linkage (dynamic shader linkage) is not supported: pass ppClassInstances = NULL and NumClassInstances = 0");
   if (shader && shader->Stage() != stage) Fail(ErrorId::SHADER_STAGE_MISMATCH, call, Describe(shader), "wrong stage");
-  state_.stage(stage).shader = RefOf(shader);
+  state_->stage(stage).shader = RefOf(shader);
   dirty_ |= DIRTY_SHADERS | (DIRTY_BINDINGS_VS << uint32_t(stage));
 }
 
-void DeviceContext::VSSetShader(VertexShader* s) { SetShader(ShaderStage::Vertex, s, "VSSetShader"); }
-void DeviceContext::PSSetShader(PixelShader* s) { SetShader(ShaderStage::Pixel, s, "PSSetShader"); }
-void DeviceContext::GSSetShader(GeometryShader* s) { SetShader(ShaderStage::Geometry, s, "GSSetShader"); }
-void DeviceContext::CSSetShader(ComputeShader* s) { SetShader(ShaderStage::Compute, s, "CSSetShader"); }
+void DeviceContext::VSSetShader(VertexShader* s, ClassInstance* const* ci, uint32_t n) { SetShader(ShaderStage::Vertex, s, ci, n, "VSSetShader"); }
+void DeviceContext::PSSetShader(PixelShader* s, ClassInstance* const* ci, uint32_t n) { SetShader(ShaderStage::Pixel, s, ci, n, "PSSetShader"); }
+void DeviceContext::GSSetShader(GeometryShader* s, ClassInstance* const* ci, uint32_t n) { SetShader(ShaderStage::Geometry, s, ci, n, "GSSetShader"); }
+void DeviceContext::CSSetShader(ComputeShader* s, ClassInstance* const* ci, uint32_t n) { SetShader(ShaderStage::Compute, s, ci, n, "CSSetShader"); }
 
 void DeviceContext::SetConstantBuffers(ShaderStage stage, uint32_t start, uint32_t num, Buffer* const* buffers, const char* call) {
   CheckSlots(start, num, COMMONSHADER_CONSTANT_BUFFER_API_SLOT_COUNT, call, "constant buffer slots");
@@ -117,7 +119,7 @@ void DeviceContext::SetConstantBuffers(ShaderStage stage, uint32_t start, uint32
     CheckOwner(device_, b, call);
     if (b && !(b->GetDesc().BindFlags & BIND_CONSTANT_BUFFER))
       Fail(ErrorId::BIND_FLAGS_INVALID, call, Describe(b), "the buffer was not created with BIND_CONSTANT_BUFFER");
-    state_.stage(stage).constantBuffers[start + i] = RefOf(b);
+    state_->stage(stage).constantBuffers[start + i] = RefOf(b);
   }
   dirty_ |= DIRTY_BINDINGS_VS << uint32_t(stage);
 }
@@ -127,8 +129,8 @@ void DeviceContext::SetShaderResources(ShaderStage stage, uint32_t start, uint32
   if (num && !views) Fail(ErrorId::INVALID_ARGUMENT, call, "shader resources", "ppShaderResourceViews is null");
   for (uint32_t i = 0; i < num; ++i) {
     CheckOwner(device_, views[i], call);
-    ShaderResourceView* v = ContextHazards::FilterInput(*this, views[i], call, stage, start + i);
-    state_.stage(stage).shaderResources[start + i] = RefOf(v);
+    ShaderResourceView* v = detail::ContextHazards::FilterInput(*this, views[i], call, stage, start + i);
+    state_->stage(stage).shaderResources[start + i] = RefOf(v);
   }
   dirty_ |= DIRTY_BINDINGS_VS << uint32_t(stage);
 }
@@ -138,7 +140,7 @@ void DeviceContext::SetSamplers(ShaderStage stage, uint32_t start, uint32_t num,
   if (num && !samplers) Fail(ErrorId::INVALID_ARGUMENT, call, "samplers", "ppSamplers is null");
   for (uint32_t i = 0; i < num; ++i) {
     CheckOwner(device_, samplers[i], call);
-    state_.stage(stage).samplers[start + i] = RefOf(samplers[i]);
+    state_->stage(stage).samplers[start + i] = RefOf(samplers[i]);
   }
   dirty_ |= DIRTY_BINDINGS_VS << uint32_t(stage);
 }
@@ -150,9 +152,9 @@ void DeviceContext::CSSetUnorderedAccessViews(uint32_t start, uint32_t num, Unor
   for (uint32_t i = 0; i < num; ++i) {
     UnorderedAccessView* v = views[i];
     CheckOwner(device_, v, call);
-    state_.computeUavs[start + i].reset();
-    if (v) ContextHazards::UnbindForOutput(*this, v, true, call);
-    state_.computeUavs[start + i] = RefOf(v);
+    state_->computeUavs[start + i].reset();
+    if (v) detail::ContextHazards::UnbindForOutput(*this, v, true, call);
+    state_->computeUavs[start + i] = RefOf(v);
     if (v && initialCounts && initialCounts[i] != 0xffffffffu) {
       if (v->GetDesc().ViewDimension == UAV_DIMENSION_BUFFER &&
           (v->GetDesc().Buffer.Flags & (BUFFER_UAV_FLAG_APPEND | BUFFER_UAV_FLAG_COUNTER)))
@@ -167,7 +169,7 @@ void DeviceContext::CSSetUnorderedAccessViews(uint32_t start, uint32_t num, Unor
 
 void DeviceContext::RSSetState(RasterizerState* s) {
   CheckOwner(device_, s, "RSSetState");
-  state_.rasterizerState = RefOf(s);
+  state_->rasterizerState = RefOf(s);
   dirty_ |= DIRTY_RASTERIZER;
 }
 
@@ -183,9 +185,9 @@ void DeviceContext::RSSetViewports(uint32_t num, const VIEWPORT* vps) {
     if (!(v.MinDepth >= 0 && v.MinDepth <= 1 && v.MaxDepth >= 0 && v.MaxDepth <= 1))
       Fail(ErrorId::INVALID_ARGUMENT, call, obj, "MinDepth and MaxDepth must be in [0, 1]");
     if (!std::isfinite(v.TopLeftX) || !std::isfinite(v.TopLeftY)) Fail(ErrorId::INVALID_ARGUMENT, call, obj, "TopLeftX/Y must be finite");
-    state_.viewports[i] = v;
+    state_->viewports[i] = v;
   }
-  state_.numViewports = num;
+  state_->numViewports = num;
   dirty_ |= DIRTY_VIEWPORTS;
 }
 
@@ -193,8 +195,8 @@ void DeviceContext::RSSetScissorRects(uint32_t num, const RECT* rects) {
   const char* call = "RSSetScissorRects";
   CheckSlots(0, num, VIEWPORT_AND_SCISSORRECT_OBJECT_COUNT_PER_PIPELINE, call, "scissor rects");
   if (num && !rects) Fail(ErrorId::INVALID_ARGUMENT, call, "scissor rects", "pRects is null");
-  for (uint32_t i = 0; i < num; ++i) state_.scissorRects[i] = rects[i];
-  state_.numScissorRects = num;
+  for (uint32_t i = 0; i < num; ++i) state_->scissorRects[i] = rects[i];
+  state_->numScissorRects = num;
   dirty_ |= DIRTY_VIEWPORTS;
 }
 
@@ -232,31 +234,31 @@ void DeviceContext::OMSetRenderTargetsAndUnorderedAccessViews(uint32_t numRTVs, 
     if (dsv) checkSize(dsv);
     for (uint32_t i = 0; i < numRTVs; ++i)
       for (uint32_t j = 0; j < i; ++j)
-        if (rtvs[i] && rtvs[j] && ContextHazards::ViewWritesOverlap(rtvs[i], rtvs[j]))
+        if (rtvs[i] && rtvs[j] && detail::ContextHazards::ViewWritesOverlap(rtvs[i], rtvs[j]))
           Fail(ErrorId::OUTPUT_MISMATCH, call, Describe(rtvs[i]), "the same subresource is bound to render targets " + std::to_string(j) + " and " + std::to_string(i));
 
-    for (auto& r : state_.renderTargets) r.reset();
-    state_.depthStencil.reset();
+    for (auto& r : state_->renderTargets) r.reset();
+    state_->depthStencil.reset();
     for (uint32_t i = 0; i < numRTVs; ++i)
-      if (rtvs[i]) ContextHazards::UnbindForOutput(*this, rtvs[i], false, call);
-    if (dsv) ContextHazards::UnbindForOutput(*this, dsv, false, call);
-    for (uint32_t i = 0; i < numRTVs; ++i) state_.renderTargets[i] = RefOf(rtvs[i]);
-    state_.numRenderTargets = numRTVs;
-    state_.depthStencil = RefOf(dsv);
+      if (rtvs[i]) detail::ContextHazards::UnbindForOutput(*this, rtvs[i], false, call);
+    if (dsv) detail::ContextHazards::UnbindForOutput(*this, dsv, false, call);
+    for (uint32_t i = 0; i < numRTVs; ++i) state_->renderTargets[i] = RefOf(rtvs[i]);
+    state_->numRenderTargets = numRTVs;
+    state_->depthStencil = RefOf(dsv);
     dirty_ |= DIRTY_RENDER_TARGETS;
   }
   if (numUAVs != KEEP_UNORDERED_ACCESS_VIEWS) {
-    uint32_t rtCount = numRTVs == KEEP_RENDER_TARGETS_AND_DEPTH_STENCIL ? state_.numRenderTargets : numRTVs;
+    uint32_t rtCount = numRTVs == KEEP_RENDER_TARGETS_AND_DEPTH_STENCIL ? state_->numRenderTargets : numRTVs;
     if (numUAVs && uavStart < rtCount)
       Fail(ErrorId::OUTPUT_MISMATCH, call, "UAVs", "UAVStartSlot (" + std::to_string(uavStart) + ") must not be below the number of render targets (" + std::to_string(rtCount) + ")");
     CheckSlots(uavStart, numUAVs, PS_CS_UAV_REGISTER_COUNT, call, "UAV slots");
     if (numUAVs && !uavs) Fail(ErrorId::INVALID_ARGUMENT, call, "UAVs", "ppUnorderedAccessViews is null");
-    for (auto& u : state_.pixelUavs) u.reset();
+    for (auto& u : state_->pixelUavs) u.reset();
     for (uint32_t i = 0; i < numUAVs; ++i) {
       UnorderedAccessView* v = uavs[i];
       CheckOwner(device_, v, call);
-      if (v) ContextHazards::UnbindForOutput(*this, v, false, call);
-      state_.pixelUavs[uavStart + i] = RefOf(v);
+      if (v) detail::ContextHazards::UnbindForOutput(*this, v, false, call);
+      state_->pixelUavs[uavStart + i] = RefOf(v);
       if (v && initialCounts && initialCounts[i] != 0xffffffffu && v->GetDesc().ViewDimension == UAV_DIMENSION_BUFFER &&
           (v->GetDesc().Buffer.Flags & (BUFFER_UAV_FLAG_APPEND | BUFFER_UAV_FLAG_COUNTER)))
         backend_->SetUavCounter(v, initialCounts[i]);
@@ -267,17 +269,17 @@ void DeviceContext::OMSetRenderTargetsAndUnorderedAccessViews(uint32_t numRTVs, 
 
 void DeviceContext::OMSetDepthStencilState(DepthStencilState* s, uint32_t stencilRef) {
   CheckOwner(device_, s, "OMSetDepthStencilState");
-  state_.depthStencilState = RefOf(s);
-  state_.stencilRef = stencilRef;
+  state_->depthStencilState = RefOf(s);
+  state_->stencilRef = stencilRef;
   dirty_ |= DIRTY_DEPTH_STENCIL;
 }
 
 void DeviceContext::OMSetBlendState(BlendState* s, const float blendFactor[4], uint32_t sampleMask) {
   CheckOwner(device_, s, "OMSetBlendState");
-  state_.blendState = RefOf(s);
-  state_.blendFactor = blendFactor ? std::array<float, 4>{blendFactor[0], blendFactor[1], blendFactor[2], blendFactor[3]}
+  state_->blendState = RefOf(s);
+  state_->blendFactor = blendFactor ? std::array<float, 4>{blendFactor[0], blendFactor[1], blendFactor[2], blendFactor[3]}
                                    : std::array<float, 4>{1, 1, 1, 1};
-  state_.sampleMask = sampleMask;
+  state_->sampleMask = sampleMask;
   dirty_ |= DIRTY_BLEND;
 }
 
@@ -285,9 +287,19 @@ void DeviceContext::OMSetBlendState(BlendState* s, const float blendFactor[4], u
 // Draw and dispatch
 
 void DeviceContext::DoDraw(const detail::DrawArgs& args, const char* call) {
-  DrawValidator::CheckDraw(*this, args, call);
-  backend_->Draw(state_, dirty_, args);
+  std::vector<UnboundRead> unbound;
+  DrawValidator::CheckDraw(*this, args, call, unbound);
+  NullBindings nulls(*this, unbound);
+  backend_->Draw(*state_, dirty_ | nulls.Dirty(), args);
   dirty_ = 0;
+}
+
+void DeviceContext::DoDispatch(uint32_t x, uint32_t y, uint32_t z, Buffer* argsBuffer, uint32_t argsOffset, const char* call) {
+  std::vector<UnboundRead> unbound;
+  DrawValidator::CheckDispatch(*this, call, unbound);
+  NullBindings nulls(*this, unbound);
+  if (argsBuffer || (x && y && z)) backend_->Dispatch(*state_, dirty_ | nulls.Dirty(), x, y, z, argsBuffer, argsOffset);
+  dirty_ &= ~uint32_t(DIRTY_BINDINGS_CS | DIRTY_COMPUTE_UAVS);
 }
 
 void DeviceContext::Draw(uint32_t vertexCount, uint32_t startVertex) {
@@ -360,16 +372,12 @@ void DeviceContext::DrawIndexedInstancedIndirect(Buffer* args, uint32_t offset) 
 void DeviceContext::Dispatch(uint32_t x, uint32_t y, uint32_t z) {
   if (x > 65535 || y > 65535 || z > 65535)
     Fail(ErrorId::INVALID_ARGUMENT, "Dispatch", "thread groups", "each dimension must be at most 65535 (D3D11_CS_DISPATCH_MAX_THREAD_GROUPS_PER_DIMENSION)");
-  DrawValidator::CheckDispatch(*this, "Dispatch");
-  if (x && y && z) backend_->Dispatch(state_, dirty_, x, y, z, nullptr, 0);
-  dirty_ &= ~uint32_t(DIRTY_BINDINGS_CS | DIRTY_COMPUTE_UAVS);
+  DoDispatch(x, y, z, nullptr, 0, "Dispatch");
 }
 
 void DeviceContext::DispatchIndirect(Buffer* args, uint32_t offset) {
   CheckArgsBuffer(device_, args, offset, 12, "DispatchIndirect");
-  DrawValidator::CheckDispatch(*this, "DispatchIndirect");
-  backend_->Dispatch(state_, dirty_, 0, 0, 0, args, offset);
-  dirty_ &= ~uint32_t(DIRTY_BINDINGS_CS | DIRTY_COMPUTE_UAVS);
+  DoDispatch(0, 0, 0, args, offset, "DispatchIndirect");
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -549,7 +557,7 @@ void DeviceContext::CopyStructureCount(Buffer* dst, uint32_t offset, UnorderedAc
   backend_->CopyStructureCount(dst, offset, src);
 }
 
-bool DeviceContext::Map(Resource* r, uint32_t sub, MAP type, uint32_t flags, MAPPED_SUBRESOURCE* out) {
+CallStatus DeviceContext::Map(Resource* r, uint32_t sub, MAP type, uint32_t flags, MAPPED_SUBRESOURCE* out) {
   const char* call = "Map";
   if (!r) Fail(ErrorId::INVALID_ARGUMENT, call, "null", "pResource is null");
   CheckOwner(device_, r, call);
@@ -585,9 +593,9 @@ bool DeviceContext::Map(Resource* r, uint32_t sub, MAP type, uint32_t flags, MAP
   }
   for (auto& m : mapped_)
     if (m.first == r && m.second == sub) Fail(ErrorId::MAP_INVALID, call, Describe(r), "subresource " + std::to_string(sub) + " is already mapped");
-  if (!backend_->Map(r, sub, type, flags, out)) return false;
+  if (!backend_->Map(r, sub, type, flags, out)) return CallStatus(DXGI_ERROR_WAS_STILL_DRAWING);
   mapped_.push_back({r, sub});
-  return true;
+  return CallStatus(S_OK);
 }
 
 void DeviceContext::Unmap(Resource* r, uint32_t sub) {
@@ -653,7 +661,7 @@ void DeviceContext::End(Query* q) {
   backend_->End(q);
 }
 
-bool DeviceContext::GetData(Query* q, void* data, uint32_t size, uint32_t flags) {
+CallStatus DeviceContext::GetData(Query* q, void* data, uint32_t size, uint32_t flags) {
   const char* call = "GetData";
   if (!q) Fail(ErrorId::INVALID_ARGUMENT, call, "null", "pAsync is null");
   CheckOwner(device_, q, call);
@@ -661,13 +669,13 @@ bool DeviceContext::GetData(Query* q, void* data, uint32_t size, uint32_t flags)
     Fail(ErrorId::QUERY_INVALID, call, Describe(q), "DataSize " + std::to_string(size) + " must be " + std::to_string(q->GetDataSize()));
   if (std::find(activeQueries_.begin(), activeQueries_.end(), q) != activeQueries_.end())
     Fail(ErrorId::QUERY_INVALID, call, Describe(q), "GetData between Begin and End");
-  return backend_->GetData(q, data, size, flags);
+  return CallStatus(backend_->GetData(q, data, size, flags) ? S_OK : S_FALSE);
 }
 
 // ---------------------------------------------------------------------------------------------
 
 void DeviceContext::ClearState() {
-  state_ = PipelineState{};
+  *state_ = PipelineState{};
   dirty_ = DIRTY_ALL;
 }
 

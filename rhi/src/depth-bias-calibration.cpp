@@ -81,6 +81,7 @@ double RenderBiased(Device& dev, VertexShader* vs, FORMAT fmt, int32_t bias) {
 void Device::CalibrateDepthBias() {
   hlsl::CompileOptions opt;
   opt.target = "vs_5_0";
+  opt.cacheDir = shaderCacheDir_;
   ShaderBytecode bc = hlsl::CompileSource(kCalibrationShader, "shadowport/depth-bias-calibration.hlsl", opt);
   Ref<VertexShader> vs = CreateVertexShader(bc);
   struct Item {

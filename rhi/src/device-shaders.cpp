@@ -16,7 +16,7 @@ Ref<T> Device::CreateShaderOfStage(ShaderStage stage, const ShaderBytecode& byte
     Fail(ErrorId::SHADER_STAGE_MISMATCH, call, obj,
          std::string("the bytecode is a ") + ShaderStageName(bytecode.stage) + " shader, not a " + ShaderStageName(stage) + " shader");
   Ref<T> s(new T(this, bytecode));
-  s->backend_ = CreateShaderBackend(*s);
+  s->backend_ = backend_->CreateShaderBackend(*s);
   return s;
 }
 
@@ -75,7 +75,7 @@ Ref<InputLayout> Device::CreateInputLayout(const INPUT_ELEMENT_DESC* elements, u
     if (!e.SemanticName || !*e.SemanticName) Fail(ErrorId::INVALID_ARGUMENT, call, obj, el + " has no SemanticName");
     el += " (" + std::string(e.SemanticName) + std::to_string(e.SemanticIndex) + ")";
     if (e.InputSlot >= IA_VERTEX_INPUT_RESOURCE_SLOT_COUNT) Fail(ErrorId::SLOT_OUT_OF_RANGE, call, obj, el + ": InputSlot must be < 32");
-    if (!(FormatSupportBackend(e.Format) & FORMAT_SUPPORT_IA_VERTEX_BUFFER))
+    if (!(backend_->FormatSupportBackend(e.Format) & FORMAT_SUPPORT_IA_VERTEX_BUFFER))
       Fail(ErrorId::FORMAT_UNSUPPORTED, call, obj, el + ": " + std::string(FormatName(e.Format)) + " is not a vertex format on this device");
     if (e.InputSlotClass == INPUT_PER_VERTEX_DATA && e.InstanceDataStepRate != 0)
       Fail(ErrorId::INVALID_DESC, call, obj, el + ": InstanceDataStepRate must be 0 for per-vertex data");

@@ -230,11 +230,11 @@ Ref<ShaderResourceView> Device::CreateShaderResourceView(Resource* resource, con
       default:
         c.dimension(false, "ViewDimension " + std::to_string(uint32_t(d.ViewDimension)) + " does not fit a texture");
     }
-    if (!(s.bindFlags & BIND_DEPTH_STENCIL) && !(FormatSupportBackend(d.Format) & FORMAT_SUPPORT_SHADER_LOAD))
+    if (!(s.bindFlags & BIND_DEPTH_STENCIL) && !(backend_->FormatSupportBackend(d.Format) & FORMAT_SUPPORT_SHADER_LOAD))
       Fail(ErrorId::FORMAT_UNSUPPORTED, c.call, c.obj, std::string(FormatName(d.Format)) + " cannot be read by shaders on this device");
   }
   Ref<ShaderResourceView> v(new ShaderResourceView(this, std::static_pointer_cast<Resource>(resource->shared_from_this()), d, r));
-  v->backend_ = CreateViewBackend(*v);
+  v->backend_ = backend_->CreateViewBackend(*v);
   return v;
 }
 
@@ -269,7 +269,7 @@ Ref<RenderTargetView> Device::CreateRenderTargetView(Resource* resource, const R
     }
   }
   CheckTextureFormat(c, s, d.Format);
-  if (!(FormatSupportBackend(d.Format) & FORMAT_SUPPORT_RENDER_TARGET))
+  if (!(backend_->FormatSupportBackend(d.Format) & FORMAT_SUPPORT_RENDER_TARGET))
     Fail(ErrorId::FORMAT_UNSUPPORTED, c.call, c.obj, std::string(FormatName(d.Format)) + " cannot be a render target on this device");
   ViewRange r;
   using K = OutputKind;
@@ -293,7 +293,7 @@ Ref<RenderTargetView> Device::CreateRenderTargetView(Resource* resource, const R
       c.dimension(false, "ViewDimension " + std::to_string(uint32_t(d.ViewDimension)) + " does not fit a texture");
   }
   Ref<RenderTargetView> v(new RenderTargetView(this, std::static_pointer_cast<Resource>(resource->shared_from_this()), d, r));
-  v->backend_ = CreateViewBackend(*v);
+  v->backend_ = backend_->CreateViewBackend(*v);
   return v;
 }
 
@@ -354,7 +354,7 @@ Ref<DepthStencilView> Device::CreateDepthStencilView(Resource* resource, const D
   r.depth = true;
   r.stencil = fi.stencilBits > 0;
   Ref<DepthStencilView> v(new DepthStencilView(this, std::static_pointer_cast<Resource>(resource->shared_from_this()), d, r));
-  v->backend_ = CreateViewBackend(*v);
+  v->backend_ = backend_->CreateViewBackend(*v);
   return v;
 }
 
@@ -385,7 +385,7 @@ Ref<UnorderedAccessView> Device::CreateUnorderedAccessView(Resource* resource, c
     uint32_t stride = BufferViewStride(c, bd, d.Format, d.Buffer.Flags & BUFFER_UAV_FLAG_RAW);
     CheckBufferElements(c, bd, stride, d.Buffer.FirstElement, d.Buffer.NumElements, r);
     if (d.Format != FORMAT_UNKNOWN && !(d.Buffer.Flags & BUFFER_UAV_FLAG_RAW) &&
-        !(FormatSupportBackend(d.Format) & FORMAT_SUPPORT_TYPED_UNORDERED_ACCESS_VIEW))
+        !(backend_->FormatSupportBackend(d.Format) & FORMAT_SUPPORT_TYPED_UNORDERED_ACCESS_VIEW))
       Fail(ErrorId::FORMAT_UNSUPPORTED, c.call, c.obj, std::string(FormatName(d.Format)) + " cannot be a typed UAV on this device");
   } else {
     const TextureShape& s = AsTexture(resource)->Shape();
@@ -409,7 +409,7 @@ Ref<UnorderedAccessView> Device::CreateUnorderedAccessView(Resource* resource, c
       }
     }
     CheckTextureFormat(c, s, d.Format);
-    if (!(FormatSupportBackend(d.Format) & FORMAT_SUPPORT_TYPED_UNORDERED_ACCESS_VIEW))
+    if (!(backend_->FormatSupportBackend(d.Format) & FORMAT_SUPPORT_TYPED_UNORDERED_ACCESS_VIEW))
       Fail(ErrorId::FORMAT_UNSUPPORTED, c.call, c.obj, std::string(FormatName(d.Format)) + " cannot be a typed UAV on this device");
     using K = OutputKind;
     switch (d.ViewDimension) {
@@ -430,7 +430,7 @@ Ref<UnorderedAccessView> Device::CreateUnorderedAccessView(Resource* resource, c
     r.mipCount = 1;
   }
   Ref<UnorderedAccessView> v(new UnorderedAccessView(this, std::static_pointer_cast<Resource>(resource->shared_from_this()), d, r));
-  v->backend_ = CreateViewBackend(*v);
+  v->backend_ = backend_->CreateViewBackend(*v);
   return v;
 }
 

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "backend.h"
+#include "null-resources.h"
 #include "validate.h"
 
 namespace sp {
@@ -46,27 +48,26 @@ std::string UsageName(USAGE usage) {
   return "USAGE(" + std::to_string(uint32_t(usage)) + ")";
 }
 
-Device::Device(const DeviceDesc& desc) : callback_(desc.messageCallback) {
+Device::Device(const DeviceDesc& desc)
+    : strictUnboundResources_(desc.strictUnboundResources), shaderCacheDir_(desc.shaderCacheDir), callback_(desc.messageCallback) {
   info_.backend = desc.backend;
   info_.validationEnabled = desc.debug;
 }
 
 Device::~Device() {
-  // Backends call ShutdownCore() in their destructor; this is a safety net for the base part.
-  std::lock_guard lock(liveMutex_);
-  for (Object* o : live_) o->device_ = nullptr;
-  live_.clear();
+  ReleaseBackendData();
+  backend_.reset();
 }
 
-void Device::InitContext(std::unique_ptr<DeviceContext> context) { context_ = std::move(context); }
-
-void Device::ShutdownCore() {
+void Device::ReleaseBackendData() {
+  // The context first: it holds bindings and the backend's per-context caches.
   if (context_) {
     context_->ClearState();
     context_.reset();
   }
+  nullResources_.reset();
   std::lock_guard lock(liveMutex_);
-  if (!live_.empty()) {
+  if (!live_.empty() && backend_) {
     Message(MessageSeverity::Warning, std::to_string(live_.size()) +
                                           " object(s) outlived their device; their GPU memory is released now "
                                           "and using them is an error");
@@ -160,7 +161,7 @@ Ref<Buffer> Device::CreateBuffer(const BUFFER_DESC& d, const SUBRESOURCE_DATA* i
   if (init && !init->pSysMem) Fail(ErrorId::INITIAL_DATA_INVALID, call, obj, "pInitialData->pSysMem is null");
 
   Ref<Buffer> b = Make<Buffer>(d);
-  b->backend_ = CreateBufferBackend(*b, init);
+  b->backend_ = backend_->CreateBufferBackend(*b, init);
   return b;
 }
 
@@ -179,7 +180,7 @@ Ref<Texture1D> Device::CreateTexture1D(const TEXTURE1D_DESC& desc, const SUBRESO
   if (desc.MiscFlags & RESOURCE_MISC_TEXTURECUBE) Fail(ErrorId::INVALID_DESC, call, obj, "RESOURCE_MISC_TEXTURECUBE needs a Texture2D");
   ValidateTextureShape(s, call, obj, init);
   Ref<Texture1D> t = Make<Texture1D>(s);
-  t->backend_ = CreateTextureBackend(*t, init);
+  t->backend_ = backend_->CreateTextureBackend(*t, init);
   return t;
 }
 
@@ -208,14 +209,14 @@ Ref<Texture2D> Device::CreateTexture2D(const TEXTURE2D_DESC& desc, const SUBRESO
     if (desc.Usage != USAGE_DEFAULT) Fail(ErrorId::USAGE_INVALID, call, obj, "multisampled textures must be USAGE_DEFAULT");
     if (desc.SampleDesc.Quality != 0) Fail(ErrorId::INVALID_DESC, call, obj, "SampleDesc.Quality must be 0 (standard pattern)");
     if (init) Fail(ErrorId::INITIAL_DATA_INVALID, call, obj, "multisampled textures cannot have initial data");
-    if (!SampleCountSupportedBackend(desc.Format, samples))
+    if (!backend_->SampleCountSupportedBackend(desc.Format, samples))
       Fail(ErrorId::FORMAT_UNSUPPORTED, call, obj,
            std::to_string(samples) + "x MSAA is not supported for this format on this device (max " +
-               std::to_string(MaxSampleCountBackend(desc.Format)) + "x; check CheckMultisampleQualityLevels)");
+               std::to_string(backend_->MaxSampleCountBackend(desc.Format)) + "x; check CheckMultisampleQualityLevels)");
   }
   ValidateTextureShape(s, call, obj, init);
   Ref<Texture2D> t = Make<Texture2D>(s);
-  t->backend_ = CreateTextureBackend(*t, init);
+  t->backend_ = backend_->CreateTextureBackend(*t, init);
   return t;
 }
 
@@ -231,7 +232,7 @@ Ref<Texture3D> Device::CreateTexture3D(const TEXTURE3D_DESC& desc, const SUBRESO
   if (desc.MiscFlags & RESOURCE_MISC_TEXTURECUBE) Fail(ErrorId::INVALID_DESC, call, obj, "RESOURCE_MISC_TEXTURECUBE needs a Texture2D");
   ValidateTextureShape(s, call, obj, init);
   Ref<Texture3D> t = Make<Texture3D>(s);
-  t->backend_ = CreateTextureBackend(*t, init);
+  t->backend_ = backend_->CreateTextureBackend(*t, init);
   return t;
 }
 
@@ -271,7 +272,7 @@ void Device::ValidateTextureShape(TextureShape& s, const char* call, const std::
     if ((s.bindFlags & (BIND_RENDER_TARGET | BIND_SHADER_RESOURCE)) != (BIND_RENDER_TARGET | BIND_SHADER_RESOURCE))
       Fail(ErrorId::BIND_FLAGS_INVALID, call, obj, "RESOURCE_MISC_GENERATE_MIPS needs BIND_RENDER_TARGET | BIND_SHADER_RESOURCE");
   }
-  uint32_t support = FormatSupportBackend(fi.kind == FormatKind::Typeless && (s.bindFlags & BIND_DEPTH_STENCIL)
+  uint32_t support = backend_->FormatSupportBackend(fi.kind == FormatKind::Typeless && (s.bindFlags & BIND_DEPTH_STENCIL)
                                               ? DepthFormatOfFamily(s.format) : s.format);
   uint32_t dimBit = s.dimension == RESOURCE_DIMENSION_TEXTURE1D   ? FORMAT_SUPPORT_TEXTURE1D
                     : s.dimension == RESOURCE_DIMENSION_TEXTURE3D ? FORMAT_SUPPORT_TEXTURE3D
@@ -326,10 +327,10 @@ Ref<SamplerState> Device::CreateSamplerState(const SAMPLER_DESC& d) {
     Fail(ErrorId::INVALID_DESC, call, obj, "MinLOD must not exceed MaxLOD");
   if (d.MipLODBias < -16.0f || d.MipLODBias > 15.99f)
     Fail(ErrorId::INVALID_DESC, call, obj, "MipLODBias must be in [-16, 15.99]");
-  if (FilterReduction(d.Filter) >= 2 && !(FormatSupportBackend(FORMAT_R32_FLOAT) & FORMAT_SUPPORT_SHADER_SAMPLE))
+  if (FilterReduction(d.Filter) >= 2 && !(backend_->FormatSupportBackend(FORMAT_R32_FLOAT) & FORMAT_SUPPORT_SHADER_SAMPLE))
     Fail(ErrorId::NOT_SUPPORTED, call, obj, "min/max reduction filters are not supported");
   Ref<SamplerState> s = Make<SamplerState>(d);
-  s->backend_ = CreateSamplerBackend(*s);
+  s->backend_ = backend_->CreateSamplerBackend(*s);
   return s;
 }
 
@@ -380,15 +381,15 @@ Ref<Query> Device::CreateQuery(const QUERY_DESC& d) {
                                                              " is not supported (EVENT, OCCLUSION, TIMESTAMP, TIMESTAMP_DISJOINT are)");
   if (d.MiscFlags) Fail(ErrorId::INVALID_DESC, "CreateQuery", "Query", "MiscFlags must be 0 (predicates are not supported)");
   Ref<Query> q = Make<Query>(d);
-  q->backend_ = CreateQueryBackend(*q);
+  q->backend_ = backend_->CreateQueryBackend(*q);
   return q;
 }
 
-uint32_t Device::CheckFormatSupport(FORMAT format) const { return FormatSupportBackend(format); }
+uint32_t Device::CheckFormatSupport(FORMAT format) const { return backend_->FormatSupportBackend(format); }
 
 uint32_t Device::CheckMultisampleQualityLevels(FORMAT format, uint32_t sampleCount) const {
   if (sampleCount == 0 || (sampleCount & (sampleCount - 1))) return 0;
-  return sampleCount == 1 || SampleCountSupportedBackend(format, sampleCount) ? 1 : 0;
+  return sampleCount == 1 || backend_->SampleCountSupportedBackend(format, sampleCount) ? 1 : 0;
 }
 
 }  // namespace sp

@@ -31,4 +31,17 @@ Error::Error(ErrorId id, std::string call, std::string object, std::string detai
       object_(std::move(object)),
       detail_(std::move(detail)) {}
 
+HRESULT HResultFromErrorId(ErrorId id) {
+  switch (id) {
+    case ErrorId::NOT_SUPPORTED:
+    case ErrorId::FORMAT_UNSUPPORTED: return DXGI_ERROR_UNSUPPORTED;
+    case ErrorId::OUT_OF_MEMORY: return E_OUTOFMEMORY;
+    // Failures of the driver or the platform, not of the arguments.
+    case ErrorId::DEVICE_CREATION_FAILED:
+    case ErrorId::DEVICE_API_ERROR:
+    case ErrorId::SHADER_COMPILE_FAILED: return E_FAIL;
+    default: return E_INVALIDARG;
+  }
+}
+
 }  // namespace sp

@@ -1,7 +1,10 @@
 #include <sp/rhi/device.h>
 
 #include <algorithm>
+#include <cstring>
 #include <string>
+
+#include "backend.h"
 
 namespace sp {
 
@@ -24,6 +27,66 @@ Object::~Object() {
 void Object::SetDebugName(std::string_view name) {
   name_ = std::string(name);
   OnDebugNameChanged();
+}
+
+uint32_t Object::AddRef() {
+  if (comRefs_++ == 0) comSelf_ = shared_from_this();
+  return comRefs_;
+}
+
+uint32_t Object::Release() {
+  if (comRefs_ == 0)
+    throw Error(ErrorId::INVALID_ARGUMENT, "Release", Describe(), "the object holds no COM reference (Release without AddRef, or once too often)");
+  if (--comRefs_ > 0) return comRefs_;
+  // The last COM reference: drop the self-reference last, since it may destroy this object.
+  std::shared_ptr<Object> self = std::move(comSelf_);
+  self.reset();
+  return 0;
+}
+
+HRESULT Object::SetPrivateData(REFGUID guid, uint32_t dataSize, const void* data) {
+  if (dataSize && !data) return E_INVALIDARG;
+  if (guid == WKPDID_D3DDebugObjectName) {
+    const char* text = static_cast<const char*>(data);
+    SetDebugName(std::string_view(text ? text : "", text ? strnlen(text, dataSize) : 0));
+    return S_OK;
+  }
+  auto it = std::find_if(privateData_.begin(), privateData_.end(), [&](const auto& e) { return e.first == guid; });
+  if (!data) {
+    if (it != privateData_.end()) privateData_.erase(it);
+    return S_OK;
+  }
+  const uint8_t* bytes = static_cast<const uint8_t*>(data);
+  std::vector<uint8_t> copy(bytes, bytes + dataSize);
+  if (it != privateData_.end()) it->second = std::move(copy);
+  else privateData_.emplace_back(guid, std::move(copy));
+  return S_OK;
+}
+
+HRESULT Object::GetPrivateData(REFGUID guid, uint32_t* dataSize, void* data) const {
+  if (!dataSize) return E_INVALIDARG;
+  std::string_view bytes;
+  if (guid == WKPDID_D3DDebugObjectName && !name_.empty()) {
+    bytes = name_;
+  } else {
+    auto it = std::find_if(privateData_.begin(), privateData_.end(), [&](const auto& e) { return e.first == guid; });
+    if (it == privateData_.end()) {
+      *dataSize = 0;
+      return DXGI_ERROR_NOT_FOUND;
+    }
+    bytes = std::string_view(reinterpret_cast<const char*>(it->second.data()), it->second.size());
+  }
+  if (!data) {
+    *dataSize = uint32_t(bytes.size());
+    return S_OK;
+  }
+  if (*dataSize < bytes.size()) {
+    *dataSize = uint32_t(bytes.size());
+    return DXGI_ERROR_MORE_DATA;
+  }
+  std::memcpy(data, bytes.data(), bytes.size());
+  *dataSize = uint32_t(bytes.size());
+  return S_OK;
 }
 
 std::string Object::Describe() const {

@@ -4,6 +4,8 @@
 
 #include <string>
 
+#include "backend.h"
+
 namespace sp {
 
 [[noreturn]] inline void Fail(ErrorId id, const char* call, const std::string& object, const std::string& detail) {

@@ -4,6 +4,8 @@
 #include <fstream>
 
 #include "backend-test.h"
+// The GL binding tables and Vulkan binding offsets are internal to the library (rhi/src).
+#include "shader-bindings.h"
 
 namespace sp::test {
 namespace {
@@ -59,7 +61,7 @@ TEST(HlslToolchain, GlslGetsCombinedSamplersAndStd140Repack) {
   ShaderBytecode vs = CompileHlsl(kLit, "vs_5_0", "VSMain");
   // float3 at offset 68 cannot be expressed in std140: the block is repacked.
   const GlBinding* ubo = nullptr;
-  for (const GlBinding& b : vs.glBindings)
+  for (const GlBinding& b : detail::GlBindingsOf(vs))
     if (b.kind == GlBindingKind::UniformBlock) ubo = &b;
   ASSERT_NE(ubo, nullptr);
   ASSERT_FALSE(ubo->repack.empty());
@@ -71,7 +73,7 @@ TEST(HlslToolchain, GlslGetsCombinedSamplersAndStd140Repack) {
 
   ShaderBytecode ps = CompileHlsl(kLit, "ps_5_0", "PSMain");
   int combined = 0, loads = 0;
-  for (const GlBinding& b : ps.glBindings) {
+  for (const GlBinding& b : detail::GlBindingsOf(ps)) {
     if (b.kind != GlBindingKind::CombinedSampler) continue;
     ++combined;
     if (b.samplerRegister < 0) ++loads;

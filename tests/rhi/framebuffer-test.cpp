@@ -261,7 +261,9 @@ float4 main(float4 p : SV_Position) : SV_Target { return depth.Load(int3(p.xy, 0
   RenderTargetView* rtvs[] = {t.rtv.get()};
   ctx().OMSetRenderTargets(1, rtvs, readOnly.get());
   ctx().PSSetShaderResources(0, {srv.get()});
-  ASSERT_NE(ctx().State().stage(ShaderStage::Pixel).shaderResources[0], nullptr) << "a read-only DSV must not unbind the SRV";
+  Ref<ShaderResourceView> bound;
+  ctx().PSGetShaderResources(0, 1, &bound);
+  ASSERT_EQ(bound, srv) << "a read-only DSV must not unbind the SRV";
   SetViewport(ctx(), W, H);
   ctx().PSSetShader(shader.get());
   RectDrawer rect(device());

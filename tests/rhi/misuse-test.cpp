@@ -20,13 +20,18 @@ TEST_P(MisuseTest, HazardUnbindsInputWhenBoundForOutput) {
   Ref<Texture2D> tex = MakeTexture2D(device(), 4, 4, FORMAT_R8G8B8A8_UNORM, BIND_RENDER_TARGET | BIND_SHADER_RESOURCE);
   Ref<ShaderResourceView> srv = device().CreateShaderResourceView(tex.get());
   Ref<RenderTargetView> rtv = device().CreateRenderTargetView(tex.get());
+  auto boundAt = [&](uint32_t slot) {
+    Ref<ShaderResourceView> v;
+    ctx().PSGetShaderResources(slot, 1, &v);
+    return v;
+  };
   ctx().PSSetShaderResources(2, {srv.get()});
-  ASSERT_EQ(ctx().State().stage(ShaderStage::Pixel).shaderResources[2].get(), srv.get());
+  ASSERT_EQ(boundAt(2), srv);
   RenderTargetView* rtvs[] = {rtv.get()};
   ctx().OMSetRenderTargets(1, rtvs, nullptr);
-  EXPECT_EQ(ctx().State().stage(ShaderStage::Pixel).shaderResources[2], nullptr);
+  EXPECT_EQ(boundAt(2), nullptr);
   ctx().PSSetShaderResources(2, {srv.get()});
-  EXPECT_EQ(ctx().State().stage(ShaderStage::Pixel).shaderResources[2], nullptr);
+  EXPECT_EQ(boundAt(2), nullptr);
   EXPECT_EQ(warnings.size(), 2u);
   // A read-only DSV does not conflict with a depth SRV.
   Ref<Texture2D> depth = MakeTexture2D(device(), 4, 4, FORMAT_R32_TYPELESS, BIND_DEPTH_STENCIL | BIND_SHADER_RESOURCE);
@@ -42,7 +47,7 @@ TEST_P(MisuseTest, HazardUnbindsInputWhenBoundForOutput) {
   Ref<ShaderResourceView> dsrv = device().CreateShaderResourceView(depth.get(), &sd);
   ctx().OMSetRenderTargets(0, nullptr, ro.get());
   ctx().PSSetShaderResources(0, {dsrv.get()});
-  EXPECT_EQ(ctx().State().stage(ShaderStage::Pixel).shaderResources[0].get(), dsrv.get());
+  EXPECT_EQ(boundAt(0), dsrv);
 }
 
 SP_INSTANTIATE_BACKEND_TESTS(MisuseTest);

@@ -16,6 +16,7 @@ void BackendTest::SetUp() {
   DeviceDesc desc;
   desc.backend = GetParam();
   desc.debug = true;
+  desc.shaderCacheDir = TestShaderCacheDir();
   desc.messageCallback = [this](MessageSeverity s, std::string_view text) {
     if (s == MessageSeverity::Error) validationMessages.emplace_back(text);
   };
@@ -38,6 +39,8 @@ std::filesystem::path ShaderDir() {
   return SHADOWPORT_SHADER_DIR;
 }
 
+std::filesystem::path TestShaderCacheDir() { return std::filesystem::path(SHADOWPORT_TEST_OUTPUT_DIR) / "shader-cache"; }
+
 std::filesystem::path TestOutputDir() {
   const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
   std::string suite = info ? info->test_suite_name() : "unknown";
@@ -55,7 +58,7 @@ static hlsl::CompileOptions TestOptions(const std::string& target, const std::st
   o.entryPoint = entry;
   o.defines = defines;
   o.includeDirs = {ShaderDir()};
-  o.cacheDir = std::filesystem::path(SHADOWPORT_TEST_OUTPUT_DIR) / "shader-cache";
+  o.cacheDir = TestShaderCacheDir();
   return o;
 }
 

@@ -44,6 +44,7 @@ ShaderBytecode CompileHlsl(const std::string& source, const std::string& target,
 ShaderBytecode CompileShaderFile(const std::string& relativePath, const std::string& target, const std::string& entry,
                                  const std::vector<hlsl::Define>& defines = {});
 std::filesystem::path ShaderDir();
+std::filesystem::path TestShaderCacheDir();  // build/test-output/shader-cache: tests never write to $HOME
 std::filesystem::path TestOutputDir();  // build/test-output/<suite>/<test>, created on demand
 
 // Readback and creation helpers (eval/conformance/gpu-util.h), shared with the conformance probes.

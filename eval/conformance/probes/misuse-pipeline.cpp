@@ -150,8 +150,8 @@ SP_PROBE(kGroup, "SP_SLOT_OUT_OF_RANGE: StartSlot + count beyond D3D11's slot co
                        {"CreateInputLayout", "misuse.hlsl:VSWithInput", {"InputSlot"}, [&] { device.CreateInputLayout(&el, 1, vs); }}});
 }
 
-SP_PROBE(kGroup, "SP_UNBOUND_RESOURCE: a register the shader reads has nothing bound",
-         "textures, samplers, cbuffers and UAVs read by the bound shaders, named by stage, register and HLSL name") {
+// The SP_UNBOUND_RESOURCE cases, on a strict device.
+static Result UnboundResourceCases(Device& device) {
   DeviceContext& ctx = *device.GetImmediateContext();
   DrawSetup setup(device);
   Ref<VertexShader> vs = device.CreateVertexShader(Compile(kShaders, "vs_5_0", "VSMain"));
@@ -186,6 +186,19 @@ SP_PROBE(kGroup, "SP_UNBOUND_RESOURCE: a register the shader reads has nothing b
   ctx.PSSetSamplers(1, {linear.get()});
   ctx.Draw(3, 0);
   return r;
+}
+
+SP_PROBE(kGroup, "SP_UNBOUND_RESOURCE: a register the shader reads has nothing bound",
+         "on a device created with strictUnboundResources (by default such registers read zeros, as in D3D11): textures, "
+         "samplers, cbuffers and UAVs read by the bound shaders, named by stage, register and HLSL name") {
+  DeviceDesc strictDesc;
+  strictDesc.backend = device.GetBackend();
+  strictDesc.debug = device.Info().validationEnabled;
+  strictDesc.strictUnboundResources = true;
+  // Driver messages of the strict device count on the probe's device, which the suite checks.
+  strictDesc.messageCallback = [&device](MessageSeverity s, std::string_view t) { device.Message(s, t); };
+  Ref<Device> strictDevice = CreateDevice(strictDesc);
+  return UnboundResourceCases(*strictDevice);
 }
 
 SP_PROBE(kGroup, "SP_RESOURCE_TYPE_MISMATCH: a bound view or sampler of another kind than the shader declares",

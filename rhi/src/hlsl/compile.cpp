@@ -426,7 +426,7 @@ ShaderBytecode CompileSource(std::string_view sourceView, const std::string& fil
   Validate(b.spirv, fileName, name);
   GlslOutput glsl = CrossCompileToGlsl(b.spirv, b.reflection, name);
   b.glsl = std::move(glsl.glsl);
-  b.glBindings = std::move(glsl.bindings);
+  detail::SetGlBindings(b, std::move(glsl.bindings));
   CacheCountMiss();
   if (opt.useCache) {
     if (cacheDir.empty()) MemoryCacheStore(key, result, includer.deps());

@@ -2,6 +2,8 @@
 #pragma once
 #include <sp/hlsl/compiler.h>
 
+#include "shader-bindings.h"
+
 #include <string>
 #include <vector>
 

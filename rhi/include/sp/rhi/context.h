@@ -6,10 +6,12 @@
 // and it unbinds a resource from input slots when it is bound for output (and refuses an input
 // binding of a resource currently bound for output), reporting a warning as the debug layer does.
 //
-// Bound objects are kept alive by the context (as D3D11 holds references).
+// Bound objects are kept alive by the context (as D3D11 holds references); the *Get* calls give
+// them back as D3D11 does (COM-style pointers come AddRef'd).
 #pragma once
 #include <array>
 #include <initializer_list>
+#include <vector>
 #include <sp/rhi/device.h>
 
 namespace sp {
@@ -55,126 +57,23 @@ struct MAPPED_SUBRESOURCE {
 inline constexpr uint32_t KEEP_RENDER_TARGETS_AND_DEPTH_STENCIL = 0xffffffffu;
 inline constexpr uint32_t KEEP_UNORDERED_ACCESS_VIEWS = 0xffffffffu;
 
-// Everything bound to one shader stage.
-struct StageBindings {
-  Ref<Shader> shader;
-  std::array<Ref<Buffer>, COMMONSHADER_CONSTANT_BUFFER_API_SLOT_COUNT> constantBuffers;
-  std::array<Ref<ShaderResourceView>, COMMONSHADER_INPUT_RESOURCE_SLOT_COUNT> shaderResources;
-  std::array<Ref<SamplerState>, COMMONSHADER_SAMPLER_SLOT_COUNT> samplers;
-};
-
-// The complete D3D11 pipeline state as the core tracks it. Backends read it at draw/dispatch.
-struct PipelineState {
-  std::array<StageBindings, SHADER_STAGE_COUNT> stages;
-  // Output-merger UAVs (pixel shader, OMSetRenderTargetsAndUnorderedAccessViews) and compute UAVs.
-  std::array<Ref<UnorderedAccessView>, PS_CS_UAV_REGISTER_COUNT> pixelUavs;
-  std::array<Ref<UnorderedAccessView>, PS_CS_UAV_REGISTER_COUNT> computeUavs;
-
-  Ref<InputLayout> inputLayout;
-  PRIMITIVE_TOPOLOGY topology = PRIMITIVE_TOPOLOGY_UNDEFINED;
-  std::array<Ref<Buffer>, IA_VERTEX_INPUT_RESOURCE_SLOT_COUNT> vertexBuffers;
-  std::array<uint32_t, IA_VERTEX_INPUT_RESOURCE_SLOT_COUNT> vertexStrides{};
-  std::array<uint32_t, IA_VERTEX_INPUT_RESOURCE_SLOT_COUNT> vertexOffsets{};
-  Ref<Buffer> indexBuffer;
-  FORMAT indexFormat = FORMAT_UNKNOWN;
-  uint32_t indexOffset = 0;
-
-  Ref<RasterizerState> rasterizerState;  // null = D3D11 defaults
-  std::array<VIEWPORT, VIEWPORT_AND_SCISSORRECT_OBJECT_COUNT_PER_PIPELINE> viewports{};
-  uint32_t numViewports = 0;
-  std::array<RECT, VIEWPORT_AND_SCISSORRECT_OBJECT_COUNT_PER_PIPELINE> scissorRects{};
-  uint32_t numScissorRects = 0;
-
-  Ref<DepthStencilState> depthStencilState;  // null = D3D11 defaults
-  uint32_t stencilRef = 0;
-  Ref<BlendState> blendState;                // null = D3D11 defaults
-  std::array<float, 4> blendFactor{1, 1, 1, 1};
-  uint32_t sampleMask = 0xffffffffu;
-
-  std::array<Ref<RenderTargetView>, SIMULTANEOUS_RENDER_TARGET_COUNT> renderTargets;
-  uint32_t numRenderTargets = 0;  // as passed to OMSetRenderTargets
-  Ref<DepthStencilView> depthStencil;
-
-  const RASTERIZER_DESC& rasterizer() const;
-  const DEPTH_STENCIL_DESC& depthStencilDesc() const;
-  const BLEND_DESC& blend() const;
-  StageBindings& stage(ShaderStage s) { return stages[size_t(s)]; }
-  const StageBindings& stage(ShaderStage s) const { return stages[size_t(s)]; }
-};
-
-// Dirty bits the core sets between draws so backends rebuild only what changed.
-enum DirtyFlag : uint32_t {
-  DIRTY_SHADERS = 1u << 0,
-  DIRTY_INPUT_LAYOUT = 1u << 1,  // layout or topology
-  DIRTY_VERTEX_BUFFERS = 1u << 2,
-  DIRTY_INDEX_BUFFER = 1u << 3,
-  DIRTY_RASTERIZER = 1u << 4,
-  DIRTY_VIEWPORTS = 1u << 5,  // viewports or scissors
-  DIRTY_DEPTH_STENCIL = 1u << 6,
-  DIRTY_BLEND = 1u << 7,
-  DIRTY_RENDER_TARGETS = 1u << 8,
-  DIRTY_BINDINGS_VS = 1u << 9,  // cbuffers, SRVs, samplers of a stage: 1 << (9 + stage)
-  DIRTY_BINDINGS_PS = 1u << 10,
-  DIRTY_BINDINGS_GS = 1u << 11,
-  DIRTY_BINDINGS_CS = 1u << 12,
-  DIRTY_PIXEL_UAVS = 1u << 13,
-  DIRTY_COMPUTE_UAVS = 1u << 14,
-  DIRTY_ALL = 0xffffffffu,
-};
-
 namespace detail {
-
-struct DrawArgs {
-  enum Kind : uint8_t { Draw, DrawIndexed, DrawInstancedIndirect, DrawIndexedInstancedIndirect } kind = Draw;
-  uint32_t count = 0;          // vertices or indices per instance
-  uint32_t instanceCount = 1;
-  uint32_t start = 0;          // StartVertexLocation or StartIndexLocation
-  int32_t baseVertex = 0;      // BaseVertexLocation (indexed)
-  uint32_t startInstance = 0;
-  Buffer* argsBuffer = nullptr;  // indirect
-  uint32_t argsOffset = 0;
-};
-
-// What a backend implements for the immediate context. The core has validated every argument
-// and resolved D3D11 defaults before calling.
-class ContextBackend {
- public:
-  virtual ~ContextBackend() = default;
-  virtual void Draw(const PipelineState& state, uint32_t dirty, const DrawArgs& args) = 0;
-  virtual void Dispatch(const PipelineState& state, uint32_t dirty, uint32_t x, uint32_t y, uint32_t z,
-                        Buffer* argsBuffer, uint32_t argsOffset) = 0;
-  virtual void ClearRenderTargetView(RenderTargetView* rtv, const float rgba[4]) = 0;
-  virtual void ClearDepthStencilView(DepthStencilView* dsv, uint32_t clearFlags, float depth, uint8_t stencil) = 0;
-  virtual void ClearUnorderedAccessViewUint(UnorderedAccessView* uav, const uint32_t values[4]) = 0;
-  virtual void ClearUnorderedAccessViewFloat(UnorderedAccessView* uav, const float values[4]) = 0;
-  virtual void CopyResource(Resource* dst, Resource* src) = 0;
-  // srcBox is never null here (the core fills the whole subresource when D3D11's is null).
-  virtual void CopySubresourceRegion(Resource* dst, uint32_t dstSubresource, uint32_t dstX, uint32_t dstY, uint32_t dstZ,
-                                     Resource* src, uint32_t srcSubresource, const BOX& srcBox) = 0;
-  virtual void UpdateSubresource(Resource* dst, uint32_t dstSubresource, const BOX& box, const void* data,
-                                 uint32_t rowPitch, uint32_t depthPitch) = 0;
-  // Returns false only for MAP_FLAG_DO_NOT_WAIT when the GPU still uses the resource.
-  virtual bool Map(Resource* resource, uint32_t subresource, MAP type, uint32_t flags, MAPPED_SUBRESOURCE* out) = 0;
-  virtual void Unmap(Resource* resource, uint32_t subresource) = 0;
-  virtual void GenerateMips(ShaderResourceView* srv) = 0;
-  virtual void ResolveSubresource(Resource* dst, uint32_t dstSubresource, Resource* src, uint32_t srcSubresource, FORMAT format) = 0;
-  virtual void CopyStructureCount(Buffer* dst, uint32_t dstOffset, UnorderedAccessView* src) = 0;
-  // Sets the hidden counter of an append/consume UAV (the pUAVInitialCounts of D3D11).
-  virtual void SetUavCounter(UnorderedAccessView* uav, uint32_t value) = 0;
-  virtual void Begin(Query* query) = 0;
-  virtual void End(Query* query) = 0;
-  virtual bool GetData(Query* query, void* data, uint32_t size, uint32_t flags) = 0;
-  virtual void Flush() = 0;
-  // Blocks until the GPU finished all submitted work (not in D3D11; for tests and benchmarks).
-  virtual void WaitIdle() = 0;
-};
-
+struct PipelineState;
+struct DrawArgs;
+class ContextBackend;
+class ContextHazards;
+class DrawValidator;
+class NullBindings;
 }  // namespace detail
 
+
+// Shader stages take a `ClassInstance* const*` and a count as in D3D11; dynamic linkage is not
+// supported, so they must be null and 0 (anything else throws SP_NOT_SUPPORTED).
 class DeviceContext {
  public:
-  DeviceContext(Device* device, std::unique_ptr<detail::ContextBackend> backend);
   ~DeviceContext();
+  DeviceContext(const DeviceContext&) = delete;
+  DeviceContext& operator=(const DeviceContext&) = delete;
 
   // --- Input assembler
   void IASetInputLayout(InputLayout* layout);
@@ -184,10 +83,10 @@ class DeviceContext {
   void IASetIndexBuffer(Buffer* buffer, FORMAT format, uint32_t offset);
 
   // --- Shader stages (VS, PS, GS, CS)
-  void VSSetShader(VertexShader* shader);
-  void PSSetShader(PixelShader* shader);
-  void GSSetShader(GeometryShader* shader);
-  void CSSetShader(ComputeShader* shader);
+  void VSSetShader(VertexShader* shader, ClassInstance* const* classInstances = nullptr, uint32_t numClassInstances = 0);
+  void PSSetShader(PixelShader* shader, ClassInstance* const* classInstances = nullptr, uint32_t numClassInstances = 0);
+  void GSSetShader(GeometryShader* shader, ClassInstance* const* classInstances = nullptr, uint32_t numClassInstances = 0);
+  void CSSetShader(ComputeShader* shader, ClassInstance* const* classInstances = nullptr, uint32_t numClassInstances = 0);
 
   void VSSetConstantBuffers(uint32_t startSlot, uint32_t num, Buffer* const* buffers) { SetConstantBuffers(ShaderStage::Vertex, startSlot, num, buffers, "VSSetConstantBuffers"); }
   void PSSetConstantBuffers(uint32_t startSlot, uint32_t num, Buffer* const* buffers) { SetConstantBuffers(ShaderStage::Pixel, startSlot, num, buffers, "PSSetConstantBuffers"); }
@@ -230,6 +129,39 @@ class DeviceContext {
   void OMSetDepthStencilState(DepthStencilState* state, uint32_t stencilRef);
   void OMSetBlendState(BlendState* state, const float blendFactor[4], uint32_t sampleMask);
 
+  // --- Reading the state back, as D3D11's *Get* calls: slots with nothing bound give null.
+  void IAGetInputLayout(OutPtr<InputLayout> layout) const;
+  void IAGetPrimitiveTopology(PRIMITIVE_TOPOLOGY* topology) const;
+  void IAGetVertexBuffers(uint32_t startSlot, uint32_t numBuffers, OutPtr<Buffer> buffers, uint32_t* strides, uint32_t* offsets) const;
+  void IAGetIndexBuffer(OutPtr<Buffer> buffer, FORMAT* format, uint32_t* offset) const;
+  void VSGetShader(OutPtr<VertexShader> shader, ClassInstance** classInstances = nullptr, uint32_t* numClassInstances = nullptr) const;
+  void PSGetShader(OutPtr<PixelShader> shader, ClassInstance** classInstances = nullptr, uint32_t* numClassInstances = nullptr) const;
+  void GSGetShader(OutPtr<GeometryShader> shader, ClassInstance** classInstances = nullptr, uint32_t* numClassInstances = nullptr) const;
+  void CSGetShader(OutPtr<ComputeShader> shader, ClassInstance** classInstances = nullptr, uint32_t* numClassInstances = nullptr) const;
+  void VSGetConstantBuffers(uint32_t startSlot, uint32_t num, OutPtr<Buffer> buffers) const { GetConstantBuffers(ShaderStage::Vertex, startSlot, num, buffers, "VSGetConstantBuffers"); }
+  void PSGetConstantBuffers(uint32_t startSlot, uint32_t num, OutPtr<Buffer> buffers) const { GetConstantBuffers(ShaderStage::Pixel, startSlot, num, buffers, "PSGetConstantBuffers"); }
+  void GSGetConstantBuffers(uint32_t startSlot, uint32_t num, OutPtr<Buffer> buffers) const { GetConstantBuffers(ShaderStage::Geometry, startSlot, num, buffers, "GSGetConstantBuffers"); }
+  void CSGetConstantBuffers(uint32_t startSlot, uint32_t num, OutPtr<Buffer> buffers) const { GetConstantBuffers(ShaderStage::Compute, startSlot, num, buffers, "CSGetConstantBuffers"); }
+  void VSGetShaderResources(uint32_t startSlot, uint32_t num, OutPtr<ShaderResourceView> views) const { GetShaderResources(ShaderStage::Vertex, startSlot, num, views, "VSGetShaderResources"); }
+  void PSGetShaderResources(uint32_t startSlot, uint32_t num, OutPtr<ShaderResourceView> views) const { GetShaderResources(ShaderStage::Pixel, startSlot, num, views, "PSGetShaderResources"); }
+  void GSGetShaderResources(uint32_t startSlot, uint32_t num, OutPtr<ShaderResourceView> views) const { GetShaderResources(ShaderStage::Geometry, startSlot, num, views, "GSGetShaderResources"); }
+  void CSGetShaderResources(uint32_t startSlot, uint32_t num, OutPtr<ShaderResourceView> views) const { GetShaderResources(ShaderStage::Compute, startSlot, num, views, "CSGetShaderResources"); }
+  void VSGetSamplers(uint32_t startSlot, uint32_t num, OutPtr<SamplerState> samplers) const { GetSamplers(ShaderStage::Vertex, startSlot, num, samplers, "VSGetSamplers"); }
+  void PSGetSamplers(uint32_t startSlot, uint32_t num, OutPtr<SamplerState> samplers) const { GetSamplers(ShaderStage::Pixel, startSlot, num, samplers, "PSGetSamplers"); }
+  void GSGetSamplers(uint32_t startSlot, uint32_t num, OutPtr<SamplerState> samplers) const { GetSamplers(ShaderStage::Geometry, startSlot, num, samplers, "GSGetSamplers"); }
+  void CSGetSamplers(uint32_t startSlot, uint32_t num, OutPtr<SamplerState> samplers) const { GetSamplers(ShaderStage::Compute, startSlot, num, samplers, "CSGetSamplers"); }
+  void CSGetUnorderedAccessViews(uint32_t startSlot, uint32_t num, OutPtr<UnorderedAccessView> views) const;
+  void RSGetState(OutPtr<RasterizerState> state) const;
+  // viewports/rects null: *num receives how many are set; otherwise *num entries are written
+  // (those beyond the set ones zeroed).
+  void RSGetViewports(uint32_t* num, VIEWPORT* viewports) const;
+  void RSGetScissorRects(uint32_t* num, RECT* rects) const;
+  void OMGetRenderTargets(uint32_t numViews, OutPtr<RenderTargetView> rtvs, OutPtr<DepthStencilView> dsv) const;
+  void OMGetRenderTargetsAndUnorderedAccessViews(uint32_t numRTVs, OutPtr<RenderTargetView> rtvs, OutPtr<DepthStencilView> dsv,
+                                                 uint32_t uavStartSlot, uint32_t numUAVs, OutPtr<UnorderedAccessView> uavs) const;
+  void OMGetDepthStencilState(OutPtr<DepthStencilState> state, uint32_t* stencilRef) const;
+  void OMGetBlendState(OutPtr<BlendState> state, float blendFactor[4], uint32_t* sampleMask) const;
+
   // --- Draw and dispatch
   void Draw(uint32_t vertexCount, uint32_t startVertexLocation);
   void DrawIndexed(uint32_t indexCount, uint32_t startIndexLocation, int32_t baseVertexLocation);
@@ -253,9 +185,9 @@ class DeviceContext {
   void UpdateSubresource(Resource* dst, uint32_t dstSubresource, const BOX* dstBox, const void* srcData,
                          uint32_t srcRowPitch, uint32_t srcDepthPitch);
   void CopyStructureCount(Buffer* dstBuffer, uint32_t dstAlignedByteOffset, UnorderedAccessView* srcView);
-  // Returns false only when MAP_FLAG_DO_NOT_WAIT is set and the GPU still uses the resource
-  // (D3D11's DXGI_ERROR_WAS_STILL_DRAWING).
-  bool Map(Resource* resource, uint32_t subresource, MAP mapType, uint32_t mapFlags, MAPPED_SUBRESOURCE* mapped);
+  // true (S_OK) when mapped; false (DXGI_ERROR_WAS_STILL_DRAWING) only when MAP_FLAG_DO_NOT_WAIT
+  // is set and the GPU still uses the resource. Misuse throws sp::Error as everywhere else.
+  CallStatus Map(Resource* resource, uint32_t subresource, MAP mapType, uint32_t mapFlags, MAPPED_SUBRESOURCE* mapped);
   void Unmap(Resource* resource, uint32_t subresource);
   void GenerateMips(ShaderResourceView* srv);
   void ResolveSubresource(Resource* dst, uint32_t dstSubresource, Resource* src, uint32_t srcSubresource, FORMAT format);
@@ -263,30 +195,37 @@ class DeviceContext {
   // --- Queries
   void Begin(Query* query);
   void End(Query* query);
-  // Returns true when the data is available (S_OK) and false while it is not (S_FALSE).
-  bool GetData(Query* query, void* data, uint32_t dataSize, uint32_t getDataFlags);
+  // true (S_OK) when the data is available, false (S_FALSE) while it is not.
+  CallStatus GetData(Query* query, void* data, uint32_t dataSize, uint32_t getDataFlags);
 
   void ClearState();
   void Flush();
   // Not in D3D11: wait for the GPU to finish everything submitted so far.
   void WaitIdle();
 
-  const PipelineState& State() const { return state_; }
   Device* GetDevice() const { return device_; }
 
  private:
+  friend class Device;
+  friend Ref<Device> CreateDevice(const DeviceDesc& desc);
+  friend class detail::ContextHazards;
+  friend class detail::DrawValidator;
+  friend class detail::NullBindings;
+  DeviceContext(Device* device, std::unique_ptr<detail::ContextBackend> backend);
   void SetConstantBuffers(ShaderStage stage, uint32_t start, uint32_t num, Buffer* const* buffers, const char* call);
   void SetShaderResources(ShaderStage stage, uint32_t start, uint32_t num, ShaderResourceView* const* views, const char* call);
   void SetSamplers(ShaderStage stage, uint32_t start, uint32_t num, SamplerState* const* samplers, const char* call);
-  void SetShader(ShaderStage stage, Shader* shader, const char* call);
+  void SetShader(ShaderStage stage, Shader* shader, ClassInstance* const* instances, uint32_t numInstances, const char* call);
+  void GetConstantBuffers(ShaderStage stage, uint32_t start, uint32_t num, OutPtr<Buffer> out, const char* call) const;
+  void GetShaderResources(ShaderStage stage, uint32_t start, uint32_t num, OutPtr<ShaderResourceView> out, const char* call) const;
+  void GetSamplers(ShaderStage stage, uint32_t start, uint32_t num, OutPtr<SamplerState> out, const char* call) const;
   void DoDraw(const detail::DrawArgs& args, const char* call);
+  void DoDispatch(uint32_t x, uint32_t y, uint32_t z, Buffer* argsBuffer, uint32_t argsOffset, const char* call);
 
-  friend class ContextHazards;
-  friend class DrawValidator;
   Device* device_;
   std::unique_ptr<detail::ContextBackend> backend_;
-  PipelineState state_;
-  uint32_t dirty_ = DIRTY_ALL;
+  std::unique_ptr<detail::PipelineState> state_;
+  uint32_t dirty_;
   std::vector<std::pair<Resource*, uint32_t>> mapped_;  // currently mapped subresources
   std::vector<Query*> activeQueries_;                   // between Begin and End
 };

@@ -1,9 +1,11 @@
 // ID3D11Device mirror. Create with sp::CreateDevice; every Create* validates its arguments the way
-// D3D11 (and its debug layer) does and throws sp::Error naming the call and the object.
+// D3D11 (and its debug layer) does and throws sp::Error naming the call and the object. The
+// D3D11-shaped overloads (descs by pointer, out-pointers) report the same failures as an HRESULT.
 //
 // Threading: like a D3D11 device created with D3D11_CREATE_DEVICE_SINGLETHREADED. The OpenGL
 // backend's context is current on the creating thread only.
 #pragma once
+#include <filesystem>
 #include <functional>
 #include <mutex>
 #include <string>
@@ -19,6 +21,12 @@ namespace sp {
 
 class DeviceContext;
 
+namespace detail {
+class DeviceBackend;
+class NullResources;
+struct DeviceAccess;
+}  // namespace detail
+
 enum class Backend : uint8_t { Vulkan, OpenGL };
 const char* BackendName(Backend b);       // "vulkan", "gl"
 bool ParseBackend(std::string_view s, Backend* out);
@@ -31,6 +39,13 @@ struct DeviceDesc {
   // severity are counted (ValidationErrorCount) and passed to messageCallback.
   bool debug = true;
   MessageCallback messageCallback;  // null: warnings and errors go to stderr
+  // A shader register read by a draw or dispatch with nothing bound reads zeros as in D3D11
+  // (samplers: D3D11's default sampler state; UAVs: writes are dropped), with one warning per
+  // shader and register. true: such a draw or dispatch throws SP_UNBOUND_RESOURCE instead.
+  bool strictUnboundResources = false;
+  // Where the shaders the device compiles for itself (depth-bias calibration) are cached.
+  // Empty: the toolchain's default (hlsl::CompileOptions::cacheDir).
+  std::filesystem::path shaderCacheDir;
 };
 
 // What the device is, and what it measured about the driver when it started.
@@ -74,7 +89,7 @@ enum FORMAT_SUPPORT : uint32_t {
 
 class Device {
  public:
-  virtual ~Device();
+  ~Device();
   Device(const Device&) = delete;
   Device& operator=(const Device&) = delete;
 
@@ -109,11 +124,42 @@ class Device {
 
   Ref<Query> CreateQuery(const QUERY_DESC& desc);
 
+  // --- D3D11 call shapes: `V_RETURN(dev->CreateTexture2D(&desc, NULL, &m_pTex))`.
+  // The object comes back through an OutPtr (a COM-style T**, AddRef'd, or a Ref<T>*). On failure
+  // *out is null, the result is HResultFromErrorId(error.id()), and the sp::Error's message goes
+  // to the message callback as an Error (counted in ValidationErrorCount), as D3D11's debug
+  // layer prints it. A null out-pointer only validates: S_FALSE when the call would succeed.
+  // Class linkage is not supported: a non-null ClassLinkage fails with DXGI_ERROR_UNSUPPORTED.
+  HRESULT CreateBuffer(const BUFFER_DESC* desc, const SUBRESOURCE_DATA* initialData, OutPtr<Buffer> buffer);
+  HRESULT CreateTexture1D(const TEXTURE1D_DESC* desc, const SUBRESOURCE_DATA* initialData, OutPtr<Texture1D> texture);
+  HRESULT CreateTexture2D(const TEXTURE2D_DESC* desc, const SUBRESOURCE_DATA* initialData, OutPtr<Texture2D> texture);
+  HRESULT CreateTexture3D(const TEXTURE3D_DESC* desc, const SUBRESOURCE_DATA* initialData, OutPtr<Texture3D> texture);
+  HRESULT CreateShaderResourceView(Resource* resource, const SHADER_RESOURCE_VIEW_DESC* desc, OutPtr<ShaderResourceView> view);
+  HRESULT CreateRenderTargetView(Resource* resource, const RENDER_TARGET_VIEW_DESC* desc, OutPtr<RenderTargetView> view);
+  HRESULT CreateDepthStencilView(Resource* resource, const DEPTH_STENCIL_VIEW_DESC* desc, OutPtr<DepthStencilView> view);
+  HRESULT CreateUnorderedAccessView(Resource* resource, const UNORDERED_ACCESS_VIEW_DESC* desc, OutPtr<UnorderedAccessView> view);
+  HRESULT CreateSamplerState(const SAMPLER_DESC* desc, OutPtr<SamplerState> state);
+  HRESULT CreateRasterizerState(const RASTERIZER_DESC* desc, OutPtr<RasterizerState> state);
+  HRESULT CreateDepthStencilState(const DEPTH_STENCIL_DESC* desc, OutPtr<DepthStencilState> state);
+  HRESULT CreateBlendState(const BLEND_DESC* desc, OutPtr<BlendState> state);
+  // bytecode/length: a ShaderBytecode::Serialize() blob (what blob->GetBufferPointer() and
+  // GetBufferSize() give for ShadowPort's compiled shaders).
+  HRESULT CreateInputLayout(const INPUT_ELEMENT_DESC* elements, uint32_t numElements, const void* vertexShaderBytecode,
+                            size_t length, OutPtr<InputLayout> layout);
+  HRESULT CreateVertexShader(const void* bytecode, size_t length, ClassLinkage* linkage, OutPtr<VertexShader> shader);
+  HRESULT CreatePixelShader(const void* bytecode, size_t length, ClassLinkage* linkage, OutPtr<PixelShader> shader);
+  HRESULT CreateGeometryShader(const void* bytecode, size_t length, ClassLinkage* linkage, OutPtr<GeometryShader> shader);
+  HRESULT CreateComputeShader(const void* bytecode, size_t length, ClassLinkage* linkage, OutPtr<ComputeShader> shader);
+  HRESULT CreateQuery(const QUERY_DESC* desc, OutPtr<Query> query);
+
   DeviceContext* GetImmediateContext() { return context_.get(); }
 
   // D3D11 CheckFormatSupport / CheckMultisampleQualityLevels.
   uint32_t CheckFormatSupport(FORMAT format) const;
   uint32_t CheckMultisampleQualityLevels(FORMAT format, uint32_t sampleCount) const;
+  // The HRESULT forms: E_FAIL (and 0) for a format the device cannot use at all, as D3D11.
+  HRESULT CheckFormatSupport(FORMAT format, uint32_t* formatSupport) const;
+  HRESULT CheckMultisampleQualityLevels(FORMAT format, uint32_t sampleCount, uint32_t* numQualityLevels) const;
 
   Backend GetBackend() const { return info_.backend; }
   const DeviceInfo& Info() const { return info_; }
@@ -124,44 +170,34 @@ class Device {
   std::string LastValidationError() const;
   void SetMessageCallback(MessageCallback cb) { callback_ = std::move(cb); }
 
-  // For backends and the core: report a message; Error severity counts as a validation error.
+  // Reports a message as D3D11's debug layer would; Error severity counts as a validation error.
   void Message(MessageSeverity severity, std::string_view text);
 
- protected:
-  explicit Device(const DeviceDesc& desc);
-  // Backends call this at the end of their constructor, once they can create objects.
-  void InitContext(std::unique_ptr<DeviceContext> context);
-  // Backends call this first in their destructor: unbinds everything and releases the backend
-  // data of objects the application still holds, while the backend can still free them.
-  void ShutdownCore();
-  // Backends call this once the device works: measures the driver's constant depth-bias unit for
-  // D16, D24 and D32F by drawing a biased quad (public API only) and sets info_.depthBiasScale*.
-  void CalibrateDepthBias();
-  DeviceInfo info_;
-
-  // Backend hooks. Arguments are validated and normalised (full view descs, resolved defaults).
-  virtual std::unique_ptr<detail::BackendObject> CreateBufferBackend(Buffer& buffer, const SUBRESOURCE_DATA* init) = 0;
-  virtual std::unique_ptr<detail::BackendObject> CreateTextureBackend(Texture& texture, const SUBRESOURCE_DATA* init) = 0;
-  virtual std::unique_ptr<detail::BackendObject> CreateViewBackend(View& view) = 0;
-  virtual std::unique_ptr<detail::BackendObject> CreateSamplerBackend(SamplerState& sampler) = 0;
-  virtual std::unique_ptr<detail::BackendObject> CreateShaderBackend(Shader& shader) = 0;
-  virtual std::unique_ptr<detail::BackendObject> CreateQueryBackend(Query& query) = 0;
-  virtual uint32_t FormatSupportBackend(FORMAT format) const = 0;
-  virtual uint32_t MaxSampleCountBackend(FORMAT format) const = 0;
-  // Whether exactly `count` samples (a power of two) are supported: drivers may offer 4x but not
-  // 2x (Mesa's software rasterizers), which a maximum alone cannot say.
-  virtual bool SampleCountSupportedBackend(FORMAT format, uint32_t count) const { return count <= MaxSampleCountBackend(format); }
-
  private:
+  friend Ref<Device> CreateDevice(const DeviceDesc& desc);
   friend class Object;
+  friend class detail::DeviceBackend;
+  friend struct detail::DeviceAccess;
+  explicit Device(const DeviceDesc& desc);
   template <class T, class... A>
   Ref<T> Make(A&&... args);
   template <class T>
   Ref<T> CreateShaderOfStage(ShaderStage stage, const ShaderBytecode& bytecode, const char* call);
   void ValidateTextureShape(TextureShape& shape, const char* call, const std::string& object,
                             const SUBRESOURCE_DATA* init) const;
+  // Measures the driver's constant depth-bias unit for D16, D24 and D32F by drawing a biased quad
+  // (public API only) and sets info_.depthBiasScale*. Needs the immediate context.
+  void CalibrateDepthBias();
+  // Unbinds everything and releases the backend data of every object still alive, while the
+  // backend can still free it.
+  void ReleaseBackendData();
 
+  DeviceInfo info_;
+  bool strictUnboundResources_ = false;
+  std::filesystem::path shaderCacheDir_;
+  std::unique_ptr<detail::DeviceBackend> backend_;
   std::unique_ptr<DeviceContext> context_;
+  std::unique_ptr<detail::NullResources> nullResources_;
   MessageCallback callback_;
   uint64_t validationErrors_ = 0;
   std::string lastValidationError_;
@@ -175,8 +211,9 @@ Ref<T> Device::Make(A&&... args) {
   return Ref<T>(new T(this, std::forward<A>(args)...));
 }
 
-// Creates a device on the requested backend. Throws sp::Error(DEVICE_CREATION_FAILED) with the
-// reason (no Vulkan driver, EGL cannot create a 4.5 core context, ...).
+// Creates a device on the requested backend: the backend, then the immediate context, then the
+// depth-bias calibration. Throws sp::Error(DEVICE_CREATION_FAILED) with the reason (no Vulkan
+// driver, EGL cannot create a 4.5 core context, ...).
 Ref<Device> CreateDevice(const DeviceDesc& desc);
 
 }  // namespace sp

@@ -6,6 +6,7 @@
 // Compile with sp::hlsl::Compile (sp/hlsl/compiler.h).
 #pragma once
 #include <array>
+#include <memory>
 #include <string>
 #include <vector>
 #include <sp/rhi/common.h>
@@ -13,6 +14,10 @@
 #include <sp/rhi/view.h>
 
 namespace sp {
+
+namespace detail {
+struct GlProgramLayout;
+}  // namespace detail
 
 enum class ShaderStage : uint8_t { Vertex = 0, Pixel = 1, Geometry = 2, Compute = 3 };
 inline constexpr uint32_t SHADER_STAGE_COUNT = 4;
@@ -26,17 +31,6 @@ inline constexpr uint32_t COMMONSHADER_SAMPLER_SLOT_COUNT = 16;
 inline constexpr uint32_t PS_CS_UAV_REGISTER_COUNT = 8;
 inline constexpr uint32_t IA_VERTEX_INPUT_RESOURCE_SLOT_COUNT = 32;
 inline constexpr uint32_t VIEWPORT_AND_SCISSORRECT_OBJECT_COUNT_PER_PIPELINE = 16;
-
-// How D3D registers become Vulkan bindings: one descriptor set per stage (VS 0, PS 1, GS 2;
-// CS 0), and within it a fixed offset per register class so b0, t0, s0 and u0 never collide.
-namespace vkbind {
-inline constexpr uint32_t kConstantBuffer = 0;  // b0..b13  -> 0..13
-inline constexpr uint32_t kShaderResource = 16; // t0..t127 -> 16..143
-inline constexpr uint32_t kSampler = 144;       // s0..s15  -> 144..159
-inline constexpr uint32_t kUnorderedAccess = 160;  // u0..u7 -> 160..167
-inline constexpr uint32_t kUavCounter = 168;       // hidden counters of append/consume UAVs
-inline uint32_t SetForStage(ShaderStage s) { return s == ShaderStage::Compute ? 0u : uint32_t(s); }
-}  // namespace vkbind
 
 enum class RegisterClass : uint8_t { ConstantBuffer /*b*/, ShaderResource /*t*/, Sampler /*s*/, UnorderedAccess /*u*/ };
 char RegisterClassLetter(RegisterClass c);  // 'b', 't', 's', 'u'
@@ -69,6 +63,8 @@ struct ShaderResourceBinding {
   ComponentType returnType = ComponentType::Float;  // texel type of textures/typed buffers
   uint32_t structureStride = 0;                     // structured buffers
   bool appendConsume = false;                       // RWStructuredBuffer used with Append/Consume
+  // Where the register is on Vulkan (descriptor set per stage, a fixed offset per register
+  // class), for reading SPIR-V disassembly; the RHI binds by register.
   uint32_t vkSet = 0, vkBinding = 0;
 };
 
@@ -96,29 +92,6 @@ struct SignatureElement {
   bool systemValue = false;  // SV_*: no location
 };
 
-// OpenGL has one namespace of texture units, image units, uniform-buffer and storage-buffer
-// bindings per program; SPIRV-Cross's GLSL uses combined samplers. This table, written by the
-// compiler, tells the GL backend where each D3D binding goes.
-enum class GlBindingKind : uint8_t { CombinedSampler, UniformBlock, StorageBlock, Image };
-
-struct GlCopyRange {
-  uint32_t src = 0, dst = 0, size = 0;  // bytes
-};
-
-struct GlBinding {
-  GlBindingKind kind = GlBindingKind::CombinedSampler;
-  uint32_t glBinding = 0;        // texture unit / image unit / UBO or SSBO binding point
-  RegisterClass registerClass = RegisterClass::ShaderResource;
-  uint32_t registerIndex = 0;    // tN, bN or uN
-  int32_t samplerRegister = -1;  // sN for combined samplers; -1 = no sampler (Load, texelFetch)
-  bool uavCounter = false;       // storage block holding the hidden counter of uN
-  // Uniform blocks whose D3D packing std140 cannot express are compiled with std140 offsets;
-  // the GL backend copies these ranges from the D3D-packed buffer into a std140 copy. Empty when
-  // the layouts agree (the buffer is bound directly).
-  uint32_t glBlockSize = 0;
-  std::vector<GlCopyRange> repack;
-};
-
 struct ShaderReflection {
   ShaderStage stage = ShaderStage::Vertex;
   std::string entryPoint;
@@ -138,7 +111,10 @@ struct ShaderBytecode {
   std::string sourceName;        // "shaders-hlsl/basic/lit.hlsl:PSMain", for messages
   std::vector<uint32_t> spirv;   // Vulkan (SPIR-V 1.3, legalised, validated; VS flips y)
   std::string glsl;              // OpenGL (GLSL 4.50 core)
-  std::vector<GlBinding> glBindings;
+  // Where the GL backend binds each register of the GLSL (texture units per texture-sampler
+  // pair, cbuffer repacking): written by the toolchain, opaque to applications (Serialize and
+  // ReflectionJson include it).
+  std::shared_ptr<const detail::GlProgramLayout> glLayout;
   ShaderReflection reflection;
 
   bool empty() const { return spirv.empty(); }
