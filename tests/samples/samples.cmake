@@ -40,6 +40,7 @@ endfunction()
 
 set(SP_SAMPLES_BIN ${PROJECT_BINARY_DIR}/samples-installed)
 sp_sample_test(shadow_map ${SP_SAMPLES_BIN}/shadow-map/shadow-map ${CMAKE_CURRENT_SOURCE_DIR}/samples/shadow-map.json)
+sp_sample_test(cascades ${SP_SAMPLES_BIN}/cascades/cascades ${CMAKE_CURRENT_SOURCE_DIR}/samples/cascades.json)
 foreach(technique csm sdsm)
   sp_sample_test(technique_${technique} ${SP_SAMPLES_BIN}/technique/technique ${CMAKE_CURRENT_SOURCE_DIR}/samples/technique-boxes.json
                  --technique ${technique})
