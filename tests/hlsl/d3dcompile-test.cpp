@@ -132,6 +132,37 @@ TEST(D3DCompile, FromFileResolvesIncludesNextToTheFile) {
   SAFE_RELEASE(errors);
 }
 
+// The DirectX SDK samples' call: D3DX11CompileFromFile(file, NULL, NULL, entry, profile, flags,
+// 0, NULL, &blob, &errors, NULL).
+TEST(D3DCompile, X11CompileFromFileIsCompileFromFileWithoutAPump) {
+  Blob* code = nullptr;
+  Blob* errors = nullptr;
+  HRESULT async = E_NOTIMPL;
+  fs::path file = DataDir() / "includes-header.hlsl";
+  HRESULT hr = hlsl::X11CompileFromFile(file, nullptr, nullptr, "main", "ps_4_0", hlsl::COMPILE_ENABLE_STRICTNESS, 0, nullptr,
+                                        &code, &errors, &async);
+  ASSERT_EQ(hr, S_OK) << BlobText(errors);
+  EXPECT_EQ(async, S_OK);
+  ASSERT_NE(code, nullptr);
+  ShaderBytecode b = ShaderBytecode::Deserialize(code->GetBufferPointer(), code->GetBufferSize());
+  EXPECT_EQ(b.stage, ShaderStage::Pixel);
+  SAFE_RELEASE(code);
+  SAFE_RELEASE(errors);
+  // A thread pump would mean an asynchronous compile: refused, with the reason.
+  auto* pump = reinterpret_cast<hlsl::X11ThreadPump*>(uintptr_t(16));
+  hr = hlsl::X11CompileFromFile(file, nullptr, nullptr, "main", "ps_4_0", 0, 0, pump, &code, &errors, &async);
+  EXPECT_EQ(hr, E_INVALIDARG);
+  EXPECT_EQ(async, E_INVALIDARG);
+  EXPECT_EQ(code, nullptr);
+  EXPECT_NE(BlobText(errors).find("pPump must be null"), std::string::npos) << BlobText(errors);
+  SAFE_RELEASE(errors);
+  // A compile error is E_FAIL through both the return value and pHResult.
+  hr = hlsl::X11CompileFromFile(DataDir() / "no-such-file.hlsl", nullptr, nullptr, "main", "ps_4_0", 0, 0, nullptr, &code, &errors, &async);
+  EXPECT_TRUE(FAILED(hr));
+  EXPECT_EQ(async, hr);
+  SAFE_RELEASE(errors);
+}
+
 TEST(D3DCompile, BadArgumentsAreInvalidArg) {
   Blob* code = nullptr;
   Blob* errors = nullptr;

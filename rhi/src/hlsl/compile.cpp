@@ -535,4 +535,19 @@ HRESULT CompileFromFile(const fs::path& fileName, const SHADER_MACRO* defines, I
   return CompileToBlobs(source, name, defines, include, entrypoint, target, flags1, code, errors);
 }
 
+HRESULT X11CompileFromFile(const fs::path& srcFile, const SHADER_MACRO* defines, Include* include, const char* functionName,
+                           const char* profile, uint32_t flags1, uint32_t flags2, X11ThreadPump* pump, Blob** shader,
+                           Blob** errorMsgs, HRESULT* hresult) {
+  HRESULT hr;
+  if (pump) {
+    if (shader) *shader = nullptr;
+    hr = Refuse(E_INVALIDARG, srcFile.string() + ": error: X11CompileFromFile: pPump must be null (compilation is synchronous)",
+                errorMsgs);
+  } else {
+    hr = CompileFromFile(srcFile, defines, include, functionName, profile, flags1, flags2, shader, errorMsgs);
+  }
+  if (hresult) *hresult = hr;
+  return hr;
+}
+
 }  // namespace sp::hlsl

@@ -187,4 +187,13 @@ HRESULT CompileFromFile(const std::filesystem::path& fileName, const SHADER_MACR
                         const char* entrypoint, const char* target, uint32_t flags1, uint32_t flags2, Blob** code,
                         Blob** errors);
 
+// D3DX11CompileFromFile, which the DirectX SDK's samples call (D3DX11 -> sp::hlsl::X11, and
+// ID3D10Blob / D3D10_SHADER_MACRO are Blob / SHADER_MACRO): CompileFromFile with a thread pump,
+// which must be null (compilation is synchronous; anything else is E_INVALIDARG, said in
+// *errorMsgs), and the result also stored in *hresult when that is not null.
+struct X11ThreadPump;
+HRESULT X11CompileFromFile(const std::filesystem::path& srcFile, const SHADER_MACRO* defines, Include* include,
+                           const char* functionName, const char* profile, uint32_t flags1, uint32_t flags2,
+                           X11ThreadPump* pump, Blob** shader, Blob** errorMsgs, HRESULT* hresult);
+
 }  // namespace sp::hlsl
