@@ -31,22 +31,6 @@ bool FormatReturns(FORMAT f, ComponentType t) {
   }
 }
 
-const char* DimName(SRV_DIMENSION d) {
-  switch (d) {
-    case SRV_DIMENSION_BUFFER: return "Buffer";
-    case SRV_DIMENSION_TEXTURE1D: return "Texture1D";
-    case SRV_DIMENSION_TEXTURE1DARRAY: return "Texture1DArray";
-    case SRV_DIMENSION_TEXTURE2D: return "Texture2D";
-    case SRV_DIMENSION_TEXTURE2DARRAY: return "Texture2DArray";
-    case SRV_DIMENSION_TEXTURE2DMS: return "Texture2DMS";
-    case SRV_DIMENSION_TEXTURE2DMSARRAY: return "Texture2DMSArray";
-    case SRV_DIMENSION_TEXTURE3D: return "Texture3D";
-    case SRV_DIMENSION_TEXTURECUBE: return "TextureCube";
-    case SRV_DIMENSION_TEXTURECUBEARRAY: return "TextureCubeArray";
-    case SRV_DIMENSION_BUFFEREX: return "raw buffer";
-    default: return "unknown";
-  }
-}
 
 struct Checker {
   DeviceContext& ctx;
@@ -80,7 +64,7 @@ struct Checker {
     switch (r.type) {
       case ShaderResourceType::Texture:
         if (d.ViewDimension != r.dimension)
-          fail(ErrorId::RESOURCE_TYPE_MISMATCH, sh, slot + " is declared " + DimName(r.dimension) + " but " + Describe(v) + " is a " + DimName(d.ViewDimension) + " view");
+          fail(ErrorId::RESOURCE_TYPE_MISMATCH, sh, slot + " is declared " + SrvDimensionName(r.dimension) + " but " + Describe(v) + " is a " + SrvDimensionName(d.ViewDimension) + " view");
         if (!FormatReturns(d.Format, r.returnType))
           fail(ErrorId::RESOURCE_TYPE_MISMATCH, sh, slot + " returns " + ComponentName(r.returnType) + " but the view's format is " + std::string(FormatName(d.Format)));
         break;
@@ -119,7 +103,7 @@ struct Checker {
     switch (r.type) {
       case ShaderResourceType::RWTexture:
         if (buf || uint32_t(d.ViewDimension) != uint32_t(r.dimension))
-          fail(ErrorId::RESOURCE_TYPE_MISMATCH, sh, slot + " is declared RW" + DimName(r.dimension) + " but " + Describe(v) + " does not match");
+          fail(ErrorId::RESOURCE_TYPE_MISMATCH, sh, slot + " is declared RW" + SrvDimensionName(r.dimension) + " but " + Describe(v) + " does not match");
         if (!FormatReturns(d.Format, r.returnType))
           fail(ErrorId::RESOURCE_TYPE_MISMATCH, sh, slot + " holds " + ComponentName(r.returnType) + " but the view's format is " + std::string(FormatName(d.Format)));
         break;
@@ -274,6 +258,23 @@ void DrawValidator::CheckDispatch(DeviceContext& ctx, const char* call, std::vec
   if (!s.stage(ShaderStage::Compute).shader) Fail(ErrorId::DRAW_STATE_INVALID, call, "pipeline", "no compute shader is bound (CSSetShader)");
   Checker c{ctx, s, call, unbound, DeviceAccess::StrictUnboundResources(*ctx.GetDevice())};
   c.checkStage(ShaderStage::Compute);
+}
+
+const char* SrvDimensionName(SRV_DIMENSION d) {
+  switch (d) {
+    case SRV_DIMENSION_BUFFER: return "Buffer";
+    case SRV_DIMENSION_TEXTURE1D: return "Texture1D";
+    case SRV_DIMENSION_TEXTURE1DARRAY: return "Texture1DArray";
+    case SRV_DIMENSION_TEXTURE2D: return "Texture2D";
+    case SRV_DIMENSION_TEXTURE2DARRAY: return "Texture2DArray";
+    case SRV_DIMENSION_TEXTURE2DMS: return "Texture2DMS";
+    case SRV_DIMENSION_TEXTURE2DMSARRAY: return "Texture2DMSArray";
+    case SRV_DIMENSION_TEXTURE3D: return "Texture3D";
+    case SRV_DIMENSION_TEXTURECUBE: return "TextureCube";
+    case SRV_DIMENSION_TEXTURECUBEARRAY: return "TextureCubeArray";
+    case SRV_DIMENSION_BUFFEREX: return "raw buffer";
+    default: return "unknown";
+  }
 }
 
 }  // namespace sp

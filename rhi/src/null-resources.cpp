@@ -12,21 +12,6 @@ namespace {
 
 constexpr uint32_t kBufferBytes = 65536;  // what shaders may index in a null buffer and read zeros
 
-const char* TextureTypeName(SRV_DIMENSION d) {
-  switch (d) {
-    case SRV_DIMENSION_TEXTURE1D: return "Texture1D";
-    case SRV_DIMENSION_TEXTURE1DARRAY: return "Texture1DArray";
-    case SRV_DIMENSION_TEXTURE2D: return "Texture2D";
-    case SRV_DIMENSION_TEXTURE2DARRAY: return "Texture2DArray";
-    case SRV_DIMENSION_TEXTURE2DMS: return "Texture2DMS";
-    case SRV_DIMENSION_TEXTURE2DMSARRAY: return "Texture2DMSArray";
-    case SRV_DIMENSION_TEXTURE3D: return "Texture3D";
-    case SRV_DIMENSION_TEXTURECUBE: return "TextureCube";
-    case SRV_DIMENSION_TEXTURECUBEARRAY: return "TextureCubeArray";
-    default: return "Texture";
-  }
-}
-
 const char* ComponentName(ComponentType t) {
   switch (t) {
     case ComponentType::UInt: return "uint";
@@ -38,13 +23,13 @@ const char* ComponentName(ComponentType t) {
 // The HLSL declaration of a register, as the warning names it.
 std::string HlslType(const ShaderResourceBinding& b) {
   switch (b.type) {
-    case ShaderResourceType::Texture: return TextureTypeName(b.dimension);
+    case ShaderResourceType::Texture: return SrvDimensionName(b.dimension);
     case ShaderResourceType::TypedBuffer: return "Buffer";
     case ShaderResourceType::StructuredBuffer: return "StructuredBuffer";
     case ShaderResourceType::ByteAddressBuffer: return "ByteAddressBuffer";
     case ShaderResourceType::Sampler: return "SamplerState";
     case ShaderResourceType::ComparisonSampler: return "SamplerComparisonState";
-    case ShaderResourceType::RWTexture: return std::string("RW") + TextureTypeName(b.dimension);
+    case ShaderResourceType::RWTexture: return std::string("RW") + SrvDimensionName(b.dimension);
     case ShaderResourceType::RWTypedBuffer: return "RWBuffer";
     case ShaderResourceType::RWStructuredBuffer: return b.appendConsume ? "Append/ConsumeStructuredBuffer" : "RWStructuredBuffer";
     case ShaderResourceType::RWByteAddressBuffer: return "RWByteAddressBuffer";

@@ -41,5 +41,7 @@ inline const Buffer* AsBuffer(const Resource* r) {
 
 std::string BindFlagsToString(uint32_t flags);
 std::string UsageName(USAGE usage);
+// HLSL's name of a resource dimension ("Texture2DArray", "Buffer"; "raw buffer" for BUFFEREX).
+const char* SrvDimensionName(SRV_DIMENSION d);
 
 }  // namespace sp

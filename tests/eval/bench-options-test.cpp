@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <optional>
 
+#include "backend-test.h"
 #include "bench.h"
 
 namespace sp::test {
@@ -52,29 +53,11 @@ TEST(BenchTechniqueSpec, SpecParametersAreValidatedAndMayNotAlsoBeSwept) {
   }
 }
 
-// Sets an environment variable for the test's scope and restores it afterwards.
-class ScopedEnv {
- public:
-  ScopedEnv(const char* name, const char* value) : name_(name) {
-    if (const char* old = std::getenv(name)) old_ = old;
-    if (value) setenv(name, value, 1);
-    else unsetenv(name);
-  }
-  ~ScopedEnv() {
-    if (old_) setenv(name_, old_->c_str(), 1);
-    else unsetenv(name_);
-  }
-
- private:
-  const char* name_;
-  std::optional<std::string> old_;
-};
-
 TEST(BenchReferenceCache, BesideTheResultsUnlessTheUserSaysOtherwise) {
   bench::BenchOptions o;
   o.out = "some/dir/results.json";
   {
-    ScopedEnv env("SHADOWPORT_REFERENCE_CACHE", nullptr);
+    ScopedEnv env("SHADOWPORT_REFERENCE_CACHE", std::nullopt);
     EXPECT_EQ(bench::ReferenceCacheDir(o), std::filesystem::path("some/dir/reference-cache"));
     o.out = "results.json";
     EXPECT_EQ(bench::ReferenceCacheDir(o), std::filesystem::path("./reference-cache"));

@@ -14,24 +14,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Sets (or unsets, with nullopt) an environment variable for the life of the object.
-class ScopedEnv {
- public:
-  ScopedEnv(const char* name, std::optional<std::string> value) : name_(name) {
-    if (const char* old = std::getenv(name)) old_ = old;
-    if (value) setenv(name, value->c_str(), 1);
-    else unsetenv(name);
-  }
-  ~ScopedEnv() {
-    if (old_) setenv(name_, old_->c_str(), 1);
-    else unsetenv(name_);
-  }
-
- private:
-  const char* name_;
-  std::optional<std::string> old_;
-};
-
 fs::path Fresh(const std::string& name) {
   fs::path p = fs::path(SHADOWPORT_TEST_OUTPUT_DIR) / "shader-cache-location" / name;
   fs::remove_all(p);

@@ -5,6 +5,7 @@
 
 #include <cstring>
 #include <filesystem>
+#include <optional>
 #include <sp/rhi/rhi.h>
 
 #include "gpu-util.h"
@@ -29,6 +30,19 @@ class BackendTest : public ::testing::TestWithParam<Backend> {
 
  private:
   Ref<Device> device_;
+};
+
+// Sets (or, with nullopt, unsets) an environment variable for the life of the object.
+class ScopedEnv {
+ public:
+  ScopedEnv(const char* name, std::optional<std::string> value);
+  ~ScopedEnv();
+  ScopedEnv(const ScopedEnv&) = delete;
+  ScopedEnv& operator=(const ScopedEnv&) = delete;
+
+ private:
+  const char* name_;
+  std::optional<std::string> old_;
 };
 
 // Name printer so tests read "Vulkan" / "OpenGL" instead of 0 / 1.
