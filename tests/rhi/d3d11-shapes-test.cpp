@@ -597,6 +597,47 @@ TEST_P(D3D11ShapesTest, PrivateDataNamesObjects) {
   EXPECT_EQ(size, 0u);
 }
 
+// tex->GetDesc(&desc), view->GetDesc(&desc), state->GetDesc(&desc), view->GetResource(&res).
+TEST_P(D3D11ShapesTest, GetDescAndGetResourceTakeOutPointers) {
+  TEXTURE2D_DESC td = {64, 32, 1, 2, FORMAT_R32_TYPELESS, 1, 0, USAGE_DEFAULT, BIND_DEPTH_STENCIL | BIND_SHADER_RESOURCE, 0, 0};
+  Texture2D* tex = nullptr;
+  ASSERT_EQ(device().CreateTexture2D(&td, nullptr, &tex), S_OK);
+  TEXTURE2D_DESC back{};
+  tex->GetDesc(&back);
+  EXPECT_TRUE(SameBytes(back, td));
+  SHADER_RESOURCE_VIEW_DESC sd = {FORMAT_R32_FLOAT, SRV_DIMENSION_TEXTURE2DARRAY};
+  sd.Texture2DArray = {0, 1, 1, 1};
+  ShaderResourceView* srv = nullptr;
+  ASSERT_EQ(device().CreateShaderResourceView(tex, &sd, &srv), S_OK);
+  SHADER_RESOURCE_VIEW_DESC sdBack;
+  srv->GetDesc(&sdBack);
+  EXPECT_EQ(sdBack.Format, FORMAT_R32_FLOAT);
+  EXPECT_EQ(sdBack.ViewDimension, SRV_DIMENSION_TEXTURE2DARRAY);
+  EXPECT_EQ(sdBack.Texture2DArray.FirstArraySlice, 1u);
+  // GetResource hands out a COM reference: the texture outlives our own Release.
+  Resource* res = nullptr;
+  srv->GetResource(&res);
+  EXPECT_EQ(res, static_cast<Resource*>(tex));
+  EXPECT_EQ(tex->Release(), 1u);
+  EXPECT_EQ(res->Release(), 0u);  // the view still holds the texture alive through its Ref
+  RASTERIZER_DESC rd;
+  rd.DepthBias = 7;
+  RasterizerState* rs = nullptr;
+  ASSERT_EQ(device().CreateRasterizerState(&rd, &rs), S_OK);
+  RASTERIZER_DESC rdBack;
+  rs->GetDesc(&rdBack);
+  EXPECT_EQ(rdBack.DepthBias, 7);
+  BUFFER_DESC bd = {256, USAGE_DEFAULT, BIND_CONSTANT_BUFFER, 0, 0, 0};
+  Buffer* cb = nullptr;
+  ASSERT_EQ(device().CreateBuffer(&bd, nullptr, &cb), S_OK);
+  BUFFER_DESC bdBack{};
+  cb->GetDesc(&bdBack);
+  EXPECT_TRUE(SameBytes(bdBack, bd));
+  EXPECT_EQ(cb->Release(), 0u);
+  EXPECT_EQ(rs->Release(), 0u);
+  EXPECT_EQ(srv->Release(), 0u);
+}
+
 SP_INSTANTIATE_BACKEND_TESTS(D3D11ShapesTest);
 
 }  // namespace

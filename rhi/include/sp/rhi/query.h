@@ -27,6 +27,7 @@ enum ASYNC_GETDATA_FLAG : uint32_t { ASYNC_GETDATA_DONOTFLUSH = 0x1 };
 class Query : public Object {
  public:
   const QUERY_DESC& GetDesc() const { return desc_; }
+  void GetDesc(QUERY_DESC* desc) const { *desc = desc_; }  // D3D11's shape
   const char* TypeName() const override { return "Query"; }
   // Size GetData expects: EVENT bool(4 bytes, BOOL), OCCLUSION uint64, TIMESTAMP uint64,
   // TIMESTAMP_DISJOINT sizeof(QUERY_DATA_TIMESTAMP_DISJOINT).

@@ -134,6 +134,7 @@ class Resource : public Object {
 class Buffer : public Resource {
  public:
   const BUFFER_DESC& GetDesc() const { return desc_; }
+  void GetDesc(BUFFER_DESC* desc) const { *desc = desc_; }  // D3D11's shape
   RESOURCE_DIMENSION GetType() const override { return RESOURCE_DIMENSION_BUFFER; }
   const char* TypeName() const override { return "Buffer"; }
 
@@ -164,6 +165,7 @@ class Texture : public Resource {
 class Texture1D : public Texture {
  public:
   TEXTURE1D_DESC GetDesc() const;
+  void GetDesc(TEXTURE1D_DESC* desc) const { *desc = GetDesc(); }  // D3D11's shape
   const char* TypeName() const override { return "Texture1D"; }
 
  protected:
@@ -174,6 +176,7 @@ class Texture1D : public Texture {
 class Texture2D : public Texture {
  public:
   TEXTURE2D_DESC GetDesc() const;
+  void GetDesc(TEXTURE2D_DESC* desc) const { *desc = GetDesc(); }  // D3D11's shape
   const char* TypeName() const override { return "Texture2D"; }
 
  protected:
@@ -184,6 +187,7 @@ class Texture2D : public Texture {
 class Texture3D : public Texture {
  public:
   TEXTURE3D_DESC GetDesc() const;
+  void GetDesc(TEXTURE3D_DESC* desc) const { *desc = GetDesc(); }  // D3D11's shape
   const char* TypeName() const override { return "Texture3D"; }
 
  protected:

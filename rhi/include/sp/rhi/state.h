@@ -178,6 +178,7 @@ struct BLEND_DESC {
 class SamplerState : public Object {
  public:
   const SAMPLER_DESC& GetDesc() const { return desc_; }
+  void GetDesc(SAMPLER_DESC* desc) const { *desc = desc_; }  // D3D11's shape
   const char* TypeName() const override { return "SamplerState"; }
 
  protected:
@@ -191,6 +192,7 @@ class SamplerState : public Object {
 class RasterizerState : public Object {
  public:
   const RASTERIZER_DESC& GetDesc() const { return desc_; }
+  void GetDesc(RASTERIZER_DESC* desc) const { *desc = desc_; }  // D3D11's shape
   const char* TypeName() const override { return "RasterizerState"; }
 
  protected:
@@ -204,6 +206,7 @@ class RasterizerState : public Object {
 class DepthStencilState : public Object {
  public:
   const DEPTH_STENCIL_DESC& GetDesc() const { return desc_; }
+  void GetDesc(DEPTH_STENCIL_DESC* desc) const { *desc = desc_; }  // D3D11's shape
   const char* TypeName() const override { return "DepthStencilState"; }
 
  protected:
@@ -217,6 +220,7 @@ class DepthStencilState : public Object {
 class BlendState : public Object {
  public:
   const BLEND_DESC& GetDesc() const { return desc_; }
+  void GetDesc(BLEND_DESC* desc) const { *desc = desc_; }  // D3D11's shape
   const char* TypeName() const override { return "BlendState"; }
 
  protected:

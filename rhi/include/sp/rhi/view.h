@@ -186,6 +186,11 @@ struct ViewRange {
 class View : public Object {
  public:
   Resource* GetResource() const { return resource_.get(); }
+  // D3D11's shape: the resource, AddRef'd (COM-style), for the caller to Release.
+  void GetResource(Resource** resource) const {
+    *resource = resource_.get();
+    if (*resource) (*resource)->AddRef();
+  }
   const Ref<Resource>& resource() const { return resource_; }
   const ViewRange& Range() const { return range_; }
   FORMAT ViewFormat() const { return format_; }
@@ -205,6 +210,7 @@ class View : public Object {
 class ShaderResourceView : public View {
  public:
   const SHADER_RESOURCE_VIEW_DESC& GetDesc() const { return desc_; }
+  void GetDesc(SHADER_RESOURCE_VIEW_DESC* desc) const { *desc = desc_; }  // D3D11's shape
   const char* TypeName() const override { return "ShaderResourceView"; }
 
  protected:
@@ -219,6 +225,7 @@ class ShaderResourceView : public View {
 class RenderTargetView : public View {
  public:
   const RENDER_TARGET_VIEW_DESC& GetDesc() const { return desc_; }
+  void GetDesc(RENDER_TARGET_VIEW_DESC* desc) const { *desc = desc_; }  // D3D11's shape
   const char* TypeName() const override { return "RenderTargetView"; }
 
  protected:
@@ -233,6 +240,7 @@ class RenderTargetView : public View {
 class DepthStencilView : public View {
  public:
   const DEPTH_STENCIL_VIEW_DESC& GetDesc() const { return desc_; }
+  void GetDesc(DEPTH_STENCIL_VIEW_DESC* desc) const { *desc = desc_; }  // D3D11's shape
   const char* TypeName() const override { return "DepthStencilView"; }
 
  protected:
@@ -247,6 +255,7 @@ class DepthStencilView : public View {
 class UnorderedAccessView : public View {
  public:
   const UNORDERED_ACCESS_VIEW_DESC& GetDesc() const { return desc_; }
+  void GetDesc(UNORDERED_ACCESS_VIEW_DESC* desc) const { *desc = desc_; }  // D3D11's shape
   const char* TypeName() const override { return "UnorderedAccessView"; }
 
  protected:
