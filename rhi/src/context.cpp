@@ -33,6 +33,13 @@ DeviceContext::DeviceContext(Device* device, std::unique_ptr<detail::ContextBack
 
 DeviceContext::~DeviceContext() = default;
 
+uint32_t DeviceContext::Release() {
+  if (comRefs_ == 0)
+    throw Error(ErrorId::INVALID_ARGUMENT, "Release", "DeviceContext",
+                "the immediate context holds no COM reference (Release without GetImmediateContext(&ctx), or once too often)");
+  return --comRefs_;
+}
+
 static void CheckOwner(Device* device, const Object* o, const char* call) {
   if (o && o->GetDevice() != device) Fail(ErrorId::INVALID_ARGUMENT, call, Describe(o), "the object belongs to another device (or outlived its device)");
 }

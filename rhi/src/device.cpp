@@ -54,6 +54,12 @@ Device::Device(const DeviceDesc& desc)
   info_.validationEnabled = desc.debug;
 }
 
+void Device::GetImmediateContext(DeviceContext** context) {
+  if (!context) throw Error(ErrorId::INVALID_ARGUMENT, "GetImmediateContext", "Device", "ppImmediateContext is null");
+  *context = context_.get();
+  context_->AddRef();
+}
+
 Device::~Device() {
   ReleaseBackendData();
   backend_.reset();

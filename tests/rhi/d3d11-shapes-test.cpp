@@ -638,6 +638,23 @@ TEST_P(D3D11ShapesTest, GetDescAndGetResourceTakeOutPointers) {
   EXPECT_EQ(srv->Release(), 0u);
 }
 
+TEST_P(D3D11ShapesTest, ImmediateContextThroughAnOutPointer) {
+  DeviceContext* context = nullptr;
+  device().GetImmediateContext(&context);
+  EXPECT_EQ(context, &ctx());
+  DeviceContext* again = nullptr;
+  device().GetImmediateContext(&again);
+  EXPECT_EQ(context->Release(), 1u);
+  EXPECT_EQ(again->Release(), 0u);
+  try {
+    context->Release();
+    ADD_FAILURE() << "a Release too many must be reported";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.id(), ErrorId::INVALID_ARGUMENT);
+    EXPECT_NE(std::string(e.what()).find("once too often"), std::string::npos) << e.what();
+  }
+}
+
 SP_INSTANTIATE_BACKEND_TESTS(D3D11ShapesTest);
 
 }  // namespace

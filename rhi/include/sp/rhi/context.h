@@ -205,6 +205,12 @@ class DeviceContext {
 
   Device* GetDevice() const { return device_; }
 
+  // COM-style references for ported code (`pd3dDevice->GetImmediateContext(&ctx); ...
+  // SAFE_RELEASE(ctx)`). The immediate context lives exactly as long as its device; these count
+  // the references handed out so that an extra Release is reported, and nothing more.
+  uint32_t AddRef() { return ++comRefs_; }
+  uint32_t Release();
+
  private:
   friend class Device;
   friend Ref<Device> CreateDevice(const DeviceDesc& desc);
@@ -228,6 +234,7 @@ class DeviceContext {
   uint32_t dirty_;
   std::vector<std::pair<Resource*, uint32_t>> mapped_;  // currently mapped subresources
   std::vector<Query*> activeQueries_;                   // between Begin and End
+  uint32_t comRefs_ = 0;
 };
 
 }  // namespace sp

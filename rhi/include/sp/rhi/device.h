@@ -153,6 +153,8 @@ class Device {
   HRESULT CreateQuery(const QUERY_DESC* desc, OutPtr<Query> query);
 
   DeviceContext* GetImmediateContext() { return context_.get(); }
+  // D3D11's shape: the context with a COM reference (see DeviceContext::AddRef).
+  void GetImmediateContext(DeviceContext** context);
 
   // D3D11 CheckFormatSupport / CheckMultisampleQualityLevels.
   uint32_t CheckFormatSupport(FORMAT format) const;
