@@ -3,6 +3,7 @@
 // Options take fxc's spellings with '-' or '/'; values follow attached (-Tps_5_0) or separately.
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <sp/hlsl/compiler.h>
 #include <stdexcept>
 
@@ -39,10 +40,10 @@ constexpr FlagSwitch kFlagSwitches[] = {
     {"enable_unbounded_descriptor_tables", hlsl::COMPILE_ENABLE_UNBOUNDED_DESCRIPTOR_TABLES},
 };
 constexpr uint32_t kOptimizationLevelBits = hlsl::COMPILE_OPTIMIZATION_LEVEL2;  // both level bits
-const char* const kValueOptions[] = {"Fo", "E", "T", "D", "I"};
+const char* const kValueOptions[] = {"Fo", "E", "T", "D", "I", "P"};
 
 std::string ValidOptions() {
-  std::string s = "-T <target>, -E <entry>, -D <name>[=<value>], -I <dir>, -Fo <out>, -nologo";
+  std::string s = "-T <target>, -E <entry>, -D <name>[=<value>], -I <dir>, -Fo <out>, -P <out.hlsl>, -nologo";
   for (const FlagSwitch& f : kFlagSwitches) s += std::string(", -") + f.name;
   return s + ", --no-cache, --help (each also as /option)";
 }
@@ -52,12 +53,14 @@ void Usage() {
                "usage: shadowport hlslc <file.hlsl> -T <target> [-E entry] [-D NAME[=VALUE]]... [-I dir]... [-Fo out] [fxc flags]\n"
                "targets: %s\n"
                "options: %s\n"
-               "writes out.spv (SPIR-V for Vulkan), out.glsl (GLSL 4.50 for OpenGL) and out.json (reflection)\n",
+               "writes out.spv (SPIR-V for Vulkan), out.glsl (GLSL 4.50 for OpenGL) and out.json (reflection);\n"
+               "with -P out.hlsl, writes instead what glslang parses: the preprocessed source after the D3D11\n"
+               "compatibility rewrites (-T optional), and names the rewrites that changed it\n",
                hlsl::ValidTargets(), ValidOptions().c_str());
 }
 
 struct Command {
-  std::string file, entry = "main", target, out;
+  std::string file, entry = "main", target, out, preprocessOut;
   hlsl::CompileOptions opt;
   bool help = false;
 };
@@ -93,6 +96,7 @@ bool ApplyOption(const std::vector<std::string>& argv, size_t& i, const std::str
     if (flag == "T") c.target = value;
     else if (flag == "E") c.entry = value;
     else if (flag == "Fo") c.out = value;
+    else if (flag == "P") c.preprocessOut = value;
     else if (flag == "I") c.opt.includeDirs.push_back(value);
     else {
       size_t eq = value.find('=');
@@ -121,6 +125,23 @@ Command Parse(const std::vector<std::string>& argv) {
   return c;
 }
 
+// fxc's -P: the preprocessed source, here also after the compatibility rewrites.
+int WritePreprocessed(Command& c) {
+  std::ifstream in(c.file, std::ios::binary);
+  if (!in) throw std::invalid_argument(c.file + ": cannot open the file");
+  std::string source((std::istreambuf_iterator<char>(in)), {});
+  c.opt.target = c.target;
+  c.opt.entryPoint = c.entry;
+  std::vector<std::string> applied;
+  std::string text = hlsl::Preprocess(source, c.file, c.opt, &applied);
+  std::ofstream out(c.preprocessOut, std::ios::binary);
+  if (!(out << text)) throw std::runtime_error(c.preprocessOut + ": cannot write the file");
+  std::string names;
+  for (const std::string& a : applied) names += (names.empty() ? "" : ", ") + a;
+  std::printf("%s -> %s (rewrites: %s)\n", c.file.c_str(), c.preprocessOut.c_str(), names.empty() ? "none" : names.c_str());
+  return 0;
+}
+
 }  // namespace
 
 int RunHlslc(const std::vector<std::string>& argv) {
@@ -129,6 +150,7 @@ int RunHlslc(const std::vector<std::string>& argv) {
     Usage();
     return 0;
   }
+  if (!c.file.empty() && !c.preprocessOut.empty()) return WritePreprocessed(c);
   if (c.file.empty() || c.target.empty()) {
     Usage();
     throw std::invalid_argument("an input file and -T are required");

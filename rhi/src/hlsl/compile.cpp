@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include "cache.h"
+#include "compat/compat.h"
 #include "spirv-edit.h"
 #include "toolchain.h"
 
@@ -239,22 +240,9 @@ class UnconnectedInputs : public glslang::TIntermTraverser {
   std::set<long long> written_;
 };
 
-std::vector<uint32_t> RunGlslang(const std::string& source, const std::string& fileName, const CompileOptions& opt, ShaderStage stage,
-                                 const std::string& entry, Includer& includer, std::vector<Diagnostic>* warnings) {
-  std::call_once(gInitOnce, [] { glslang::InitializeProcess(); });
+// Settings shared by the preprocessing and the parsing run of glslang.
+void ConfigureShader(glslang::TShader& shader, ShaderStage stage, const std::string& entry) {
   EShLanguage lang = LanguageOf(stage);
-  glslang::TShader shader(lang);
-  const char* src = source.c_str();
-  const char* name = fileName.c_str();
-  int len = int(source.size());
-  shader.setStringsWithLengthsAndNames(&src, &len, &name, 1);
-  std::string preamble;
-  // fxc's -Zpr/-Zpc set the packing of matrices declared without row_major/column_major; the
-  // pragma does the same in glslang (and a pack_matrix pragma in the source still wins after it).
-  if (opt.flags1 & COMPILE_PACK_MATRIX_ROW_MAJOR) preamble += "#pragma pack_matrix(row_major)\n";
-  if (opt.flags1 & COMPILE_PACK_MATRIX_COLUMN_MAJOR) preamble += "#pragma pack_matrix(column_major)\n";
-  for (const Define& d : opt.defines) preamble += "#define " + d.name + " " + (d.value.empty() ? std::string("1") : d.value) + "\n";
-  shader.setPreamble(preamble.c_str());
   shader.setEntryPoint(entry.c_str());
   shader.setSourceEntryPoint(entry.c_str());
   shader.setEnvInput(glslang::EShSourceHlsl, lang, glslang::EShClientVulkan, 100);
@@ -274,7 +262,60 @@ std::vector<uint32_t> RunGlslang(const std::string& source, const std::string& f
   // D3D's +y is up in NDC and row 0 is the top; negating y in the last pre-rasterization stage
   // gives D3D's orientation on both APIs (see docs/porting.md, "Orientation").
   if (stage == ShaderStage::Vertex) shader.setInvertY(true);
-  auto messages = EShMessages(EShMsgSpvRules | EShMsgVulkanRules | EShMsgReadHlsl | EShMsgHlslOffsets);
+}
+
+constexpr auto kMessages = EShMessages(EShMsgSpvRules | EShMsgVulkanRules | EShMsgReadHlsl | EShMsgHlslOffsets);
+
+}  // namespace
+
+// glslang's preprocessor (defines, includes, -Zpr/-Zpc), then the D3D11 compatibility rewrites:
+// the text glslang's parser is given, with #line directives naming the user's files.
+static compat::Result PreprocessWithRewrites(const std::string& source, const std::string& fileName, const CompileOptions& opt,
+                                      ShaderStage stage, const std::string& entry, glslang::TShader::Includer& includer) {
+  std::call_once(gInitOnce, [] { glslang::InitializeProcess(); });
+  glslang::TShader shader(LanguageOf(stage));
+  const char* src = source.c_str();
+  const char* name = fileName.c_str();
+  int len = int(source.size());
+  shader.setStringsWithLengthsAndNames(&src, &len, &name, 1);
+  std::string preamble;
+  for (const Define& d : opt.defines) preamble += "#define " + d.name + " " + (d.value.empty() ? std::string("1") : d.value) + "\n";
+  shader.setPreamble(preamble.c_str());
+  ConfigureShader(shader, stage, entry);
+  std::string out;
+  if (!shader.preprocess(GetDefaultResources(), 100, ENoProfile, false, false, kMessages, &out, includer)) {
+    std::string log = std::string(shader.getInfoLog()) + shader.getInfoDebugLog();
+    throw CompileError("glslang (preprocessor)", fileName + ":" + entry, ParseGlslangLog(log, fileName), log);
+  }
+  // fxc's -Zpr/-Zpc set the packing of matrices declared without row_major/column_major; the
+  // pragma does the same in glslang (and a pack_matrix pragma in the source still wins after it).
+  // It goes before the preprocessed text, not into the preamble, whose pragmas the preprocessor
+  // prints without a line break before the source's first line.
+  std::string pragmas;
+  if (opt.flags1 & COMPILE_PACK_MATRIX_ROW_MAJOR) pragmas = "#pragma pack_matrix(row_major)\n";
+  if (opt.flags1 & COMPILE_PACK_MATRIX_COLUMN_MAJOR) pragmas = "#pragma pack_matrix(column_major)\n";
+  try {
+    compat::Result r = compat::Apply(out, fileName);
+    if (!pragmas.empty()) r.source = pragmas + "#line 1 \"" + fileName + "\"\n" + r.source;
+    return r;
+  } catch (const compat::RewriteError& e) {
+    throw CompileError("D3D11 compatibility pass", fileName + ":" + entry, {{e.file, e.line, e.what()}}, e.what());
+  }
+}
+
+namespace {
+
+std::vector<uint32_t> RunGlslang(const std::string& source, const std::string& fileName, const CompileOptions& opt, ShaderStage stage,
+                                 const std::string& entry, Includer& includer, std::vector<Diagnostic>* warnings) {
+  compat::Result pre = PreprocessWithRewrites(source, fileName, opt, stage, entry, includer);
+  EShLanguage lang = LanguageOf(stage);
+  glslang::TShader shader(lang);
+  const char* src = pre.source.c_str();
+  const char* name = fileName.c_str();
+  int len = int(pre.source.size());
+  shader.setStringsWithLengthsAndNames(&src, &len, &name, 1);
+  ConfigureShader(shader, stage, entry);
+  auto messages = kMessages;
 
   if (!shader.parse(GetDefaultResources(), 100, ENoProfile, false, false, messages, includer)) {
     std::string log = std::string(shader.getInfoLog()) + shader.getInfoDebugLog();
@@ -434,6 +475,18 @@ ShaderBytecode CompileSource(std::string_view sourceView, const std::string& fil
   }
   if (warnings) *warnings = result.warnings;
   return std::move(result.bytecode);
+}
+
+std::string Preprocess(std::string_view source, const std::string& fileName, const CompileOptions& opt,
+                       std::vector<std::string>* rewritesApplied) {
+  ShaderStage stage = ShaderStage::Pixel;
+  if (!opt.target.empty() && !ParseTarget(opt.target, &stage))
+    throw CompileError("Preprocess", fileName, {{fileName, 0, UnknownTargetMessage(opt.target)}}, "");
+  std::lock_guard lock(gCompileMutex);
+  Includer includer(fs::path(fileName).parent_path(), opt.includeDirs);
+  compat::Result r = PreprocessWithRewrites(std::string(source), fileName, opt, stage, opt.entryPoint.empty() ? "main" : opt.entryPoint, includer);
+  if (rewritesApplied) *rewritesApplied = r.applied;
+  return r.source;
 }
 
 ShaderBytecode CompileFile(const fs::path& file, const CompileOptions& opt, std::vector<Diagnostic>* warnings) {

@@ -107,6 +107,16 @@ ShaderBytecode CompileFile(const std::filesystem::path& file, const CompileOptio
 ShaderBytecode CompileSource(std::string_view source, const std::string& fileName, const CompileOptions& options,
                              std::vector<Diagnostic>* warnings = nullptr);
 
+// D3DPreprocess, and more: the text glslang's parser is given for this source. That is the
+// preprocessor's output (defines expanded, includes inlined, #line directives naming the user's
+// files) after the D3D11 compatibility rewrites, which turn constructs fxc accepts and glslang
+// does not (brace-elided initializer lists, matrix swizzles, fxc's for-loop scoping, statics in
+// cbuffers, array casts, effect-file blocks) into equivalent HLSL; `rewritesApplied` receives
+// the names of those that changed something. What `shadowport hlslc -P out.hlsl` writes.
+// Throws CompileError (preprocessor errors, and constructs the rewrites refuse).
+std::string Preprocess(std::string_view source, const std::string& fileName, const CompileOptions& options,
+                       std::vector<std::string>* rewritesApplied = nullptr);
+
 // Writes base.spv (SPIR-V), base.glsl (GLSL 4.50) and base.json (reflection, GL binding table):
 // what `shadowport hlslc -Fo base` produces.
 void WriteCompiledFiles(const std::filesystem::path& base, const ShaderBytecode& bytecode);

@@ -1,0 +1,32 @@
+#include "compat.h"
+
+namespace sp::hlsl::compat {
+
+const std::vector<Rewrite>& Rewrites() {
+  static const std::vector<Rewrite> kRewrites = {
+      {"effect-blocks", "FX11 technique/pass blocks and state-object initialisers (kept for sp::fx::Effect, hidden from the shader)",
+       RewriteEffectBlocks},
+      {"for-loop-scope", "a variable declared in a for initialiser, used after the loop (fxc's old scoping)", RewriteForLoopScope},
+      {"cbuffer-static", "a static declared inside a cbuffer block", RewriteCbufferStatics},
+      {"array-cast", "an array reinterpreted by a cast, (float[8])packedFloat4s", RewriteArrayCasts},
+      {"initializer-list", "brace-elided and flat initializer lists for structs, vectors and arrays", RewriteInitializerLists},
+      {"matrix-swizzle", "matrix swizzles (m._11_21_31, m._m00_m10), read and written", RewriteMatrixSwizzles},
+  };
+  return kRewrites;
+}
+
+Result Apply(const std::string& preprocessed, const std::string& mainFile) {
+  Result r;
+  r.source = preprocessed;
+  for (const Rewrite& rw : Rewrites()) {
+    Source src(r.source, mainFile);
+    Edits edits;
+    rw.run(src, edits);
+    if (edits.empty()) continue;
+    r.source = edits.Apply(src);
+    r.applied.push_back(rw.name);
+  }
+  return r;
+}
+
+}  // namespace sp::hlsl::compat
