@@ -168,7 +168,12 @@ ShaderReflection Reflect(const std::vector<uint32_t>& spirv, ShaderStage stage, 
     b.vkSet = set;
     b.vkBinding = vkbind::kShaderResource + b.registerIndex;
     if (!t.array.empty()) Fail(sourceName, "texture arrays of objects ('" + img.name + "[]') are not supported; use Texture2DArray");
-    r.resources.push_back(b);
+    // A texture read through both a comparison and a plain sampler is two SPIR-V variables (depth
+    // and non-depth image types) at one register: D3D11 sees one shader resource.
+    bool twin = false;
+    for (const ShaderResourceBinding& o : r.resources)
+      twin |= o.registerClass == RegisterClass::ShaderResource && o.registerIndex == b.registerIndex;
+    if (!twin) r.resources.push_back(b);
   }
   std::set<uint32_t> comparison = ComparisonSamplerVariables(spirv);
   for (const auto& s : res.separate_samplers) {

@@ -155,11 +155,14 @@ void ShiftUnshiftedTextureBindings(std::vector<uint32_t>& spirv, uint32_t textur
     }
   });
   // The two variables share the HLSL name; the unshifted one is `textureBase` below the other.
+  // It also lacks the resource set: glslang leaves it in set 0 (a pixel shader's textures are in
+  // set 1), so the set is copied from the twin as well.
   std::unordered_map<uint32_t, std::string> names;
-  std::unordered_map<uint32_t, uint32_t*> bindingWord;
+  std::unordered_map<uint32_t, uint32_t*> bindingWord, setWord;
   ForEach(spirv, [&](spv::Op op, uint32_t wc, uint32_t* in) {
     if (op == spv::OpName && wc >= 3 && textures.count(in[1])) names[in[1]] = reinterpret_cast<const char*>(in + 2);
     if (op == spv::OpDecorate && wc >= 4 && in[2] == spv::DecorationBinding && textures.count(in[1])) bindingWord[in[1]] = &in[3];
+    if (op == spv::OpDecorate && wc >= 4 && in[2] == spv::DecorationDescriptorSet && textures.count(in[1])) setWord[in[1]] = &in[3];
   });
   for (auto& [var, word] : bindingWord) {
     auto name = names.find(var);
@@ -168,6 +171,7 @@ void ShiftUnshiftedTextureBindings(std::vector<uint32_t>& spirv, uint32_t textur
       auto otherName = names.find(other);
       if (other != var && otherName != names.end() && otherName->second == name->second && *otherWord == *word + textureBase) {
         *word = *otherWord;
+        if (setWord.count(var) && setWord.count(other)) *setWord[var] = *setWord[other];
         break;
       }
     }

@@ -18,7 +18,7 @@ void RemapCounterBindings(std::vector<uint32_t>& spirv, uint32_t uavBase, uint32
 
 // glslang gives a texture used with both a SamplerComparisonState and a SamplerState two
 // variables (a depth and a non-depth image) and applies the texture binding shift to only one:
-// the other keeps the bare register number. Give it its twin's binding.
+// the other keeps the bare register number (and set 0). Give it its twin's binding and set.
 void ShiftUnshiftedTextureBindings(std::vector<uint32_t>& spirv, uint32_t textureBase);
 
 // Variables (by result id) of samplers that feed a depth-comparison instruction: HLSL's

@@ -19,12 +19,15 @@ Result Apply(const std::string& preprocessed, const std::string& mainFile) {
   Result r;
   r.source = preprocessed;
   for (const Rewrite& rw : Rewrites()) {
-    Source src(r.source, mainFile);
-    Edits edits;
-    rw.run(src, edits);
-    if (edits.empty()) continue;
-    r.source = edits.Apply(src);
-    r.applied.push_back(rw.name);
+    // A rewrite skips a construct nested in one it is rewriting; the next round gets it.
+    for (int round = 0; round < 8; ++round) {
+      Source src(r.source, mainFile);
+      Edits edits;
+      rw.run(src, edits);
+      if (edits.empty()) break;
+      r.source = edits.Apply(src);
+      if (round == 0) r.applied.push_back(rw.name);
+    }
   }
   return r;
 }
