@@ -3,6 +3,8 @@
 // rules; plus what each rewrite refuses, and that messages still name the user's lines.
 #include <sp/rhi/helpers.h>
 
+#include <fstream>
+
 #include "../rhi/rhi-test-util.h"
 
 namespace sp::test {
@@ -118,6 +120,21 @@ TEST(D3D11Compat, MessagesAfterRewritesNameTheUsersLines) {
   EXPECT_EQ(d.file, "compat.hlsl");
   EXPECT_EQ(d.line, 6);
   EXPECT_TRUE(Contains(d.message, "undefinedThing")) << d.message;
+}
+
+// Windows-era includes: backslashes, and a case that differs from the file's name.
+TEST(D3D11Compat, IncludesWithBackslashesAndAnotherCaseFindTheFile) {
+  std::filesystem::path dir = TestOutputDir() / "windows-includes";
+  std::filesystem::create_directories(dir / "Shared");
+  {
+    std::ofstream(dir / "Shared" / "Common.hlsli") << "float Twice(float x) { return 2 * x; }\n";
+  }
+  std::string src = "#include \"shared\\COMMON.hlsli\"\nRWStructuredBuffer<float> o : register(u0);\n"
+                    "[numthreads(1, 1, 1)] void main() { o[0] = Twice(1); }\n";
+  EXPECT_NO_THROW(hlsl::CompileSource(src, (dir / "main.hlsl").string(), Options()));
+  hlsl::Diagnostic d = FirstError("#include \"shared\\Missing.hlsli\"\n");
+  EXPECT_EQ(d.line, 1);
+  EXPECT_TRUE(Contains(d.message, "shared\\Missing.hlsli")) << d.message;
 }
 
 // ---- each construct executed on both backends ----------------------------------------------------

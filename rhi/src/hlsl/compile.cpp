@@ -5,6 +5,8 @@
 #include <glslang/SPIRV/GlslangToSpv.h>
 #include <glslang/build_info.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cstring>
 #include <fstream>
 #include <mutex>
@@ -117,6 +119,40 @@ bool ReadFile(const fs::path& p, std::string* out) {
   return true;
 }
 
+// D3D shaders come from Windows: `#include "..\Shared\Common.hlsl"` with backslashes, and names
+// whose case differs from the file's. A path that does not exist as written is looked up again
+// with '/' separators and, component by component, ignoring case (the first match in directory
+// order when several names differ only in case).
+fs::path WindowsPath(const fs::path& written) {
+  std::error_code ec;
+  if (fs::exists(written, ec)) return written;
+  std::string s = written.string();
+  std::replace(s.begin(), s.end(), '\\', '/');
+  fs::path p(s);
+  if (fs::exists(p, ec)) return p;
+  fs::path resolved = p.is_absolute() ? p.root_path() : fs::path();
+  for (const fs::path& part : p.relative_path()) {
+    fs::path next = resolved / part;
+    if (part == "." || part == ".." || fs::exists(next, ec)) {
+      resolved = next;
+      continue;
+    }
+    std::string want = part.string();
+    bool found = false;
+    for (const fs::directory_entry& e : fs::directory_iterator(resolved.empty() ? fs::path(".") : resolved, ec)) {
+      std::string name = e.path().filename().string();
+      if (name.size() == want.size() &&
+          std::equal(name.begin(), name.end(), want.begin(), [](char a, char b) { return std::tolower(a) == std::tolower(b); })) {
+        resolved /= name;
+        found = true;
+        break;
+      }
+    }
+    if (!found) return written;
+  }
+  return resolved;
+}
+
 // fxc's #include rules: "file" relative to the including file, then the -I folders; <file> in
 // the -I folders. Every file read is remembered for the cache's dependency check.
 class Includer : public glslang::TShader::Includer {
@@ -141,7 +177,8 @@ class Includer : public glslang::TShader::Includer {
   const std::vector<Dependency>& deps() const { return deps_; }
 
  private:
-  IncludeResult* TryOpen(const fs::path& p) {
+  IncludeResult* TryOpen(const fs::path& asWritten) {
+    fs::path p = WindowsPath(asWritten);
     std::string* content = new std::string;
     if (!ReadFile(p, content)) {
       delete content;
