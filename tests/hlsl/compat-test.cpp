@@ -137,6 +137,14 @@ TEST(D3D11Compat, IncludesWithBackslashesAndAnotherCaseFindTheFile) {
   EXPECT_TRUE(Contains(d.message, "shared\\Missing.hlsli")) << d.message;
 }
 
+// glslang's recursive parser would overflow its stack; the pass stops first, with the line.
+TEST(D3D11Compat, DeepNestingIsAnErrorNotACrash) {
+  hlsl::Diagnostic d = FirstError("[numthreads(1, 1, 1)] void main() {\n  float x = " + std::string(10000, '(') + "1" +
+                                  std::string(10000, ')') + ";\n}\n");
+  EXPECT_EQ(d.line, 2);
+  EXPECT_TRUE(Contains(d.message, "nested more than 512 levels")) << d.message;
+}
+
 // ---- each construct executed on both backends ----------------------------------------------------
 
 class D3D11CompatRun : public BackendTest {

@@ -15,9 +15,26 @@ const std::vector<Rewrite>& Rewrites() {
   return kRewrites;
 }
 
+// glslang's parser (and fxc's) is recursive: ten thousand nested parentheses overflow its stack.
+// A limit far above what real shaders nest turns that crash into a message.
+constexpr int kMaxNesting = 512;
+
+void CheckNesting(const Source& s) {
+  int depth = 0;
+  for (size_t i = 0; i < s.size(); ++i) {
+    if (s[i].Is("(") || s[i].Is("[") || s[i].Is("{")) {
+      if (++depth > kMaxNesting)
+        s.Fail(i, "brackets nested more than " + std::to_string(kMaxNesting) + " levels deep (the parser is recursive); simplify the expression");
+    } else if (s[i].Is(")") || s[i].Is("]") || s[i].Is("}")) {
+      --depth;
+    }
+  }
+}
+
 Result Apply(const std::string& preprocessed, const std::string& mainFile) {
   Result r;
   r.source = preprocessed;
+  CheckNesting(Source(preprocessed, mainFile));
   for (const Rewrite& rw : Rewrites()) {
     // A rewrite skips a construct nested in one it is rewriting; the next round gets it.
     for (int round = 0; round < 8; ++round) {
