@@ -272,6 +272,30 @@ RWStructuredBuffer<float4> o : register(u0);
   ExpectRows(Run(src, cb, 2), {{4, 0 + 1 + 2 + 3, 0, 0}, {23, 6 + 3, 0, 0}});
 }
 
+// abs(m), saturate(m), max(m, n), lerp(a, b, s) on matrices: D3D applies them per component.
+TEST_P(D3D11CompatRun, ComponentWiseIntrinsicsTakeMatrices) {
+  const char* src = R"(
+cbuffer C : register(b0) { row_major float2x4 a; row_major float2x4 b; };
+RWStructuredBuffer<float4> o : register(u0);
+[numthreads(1, 1, 1)] void main() {
+  float2x4 s = saturate(a);
+  float2x4 m = max(abs(a), b);
+  float2x4 l = lerp(a, b, 0.25);
+  o[0] = s[0]; o[1] = s[1];
+  o[2] = m[0]; o[3] = m[1];
+  o[4] = l[0]; o[5] = l[1];
+})";
+  std::vector<float> cb = {-2, -0.5f, 0.25f, 3, 1, 0, -4, 0.5f, /* b */ 1, 1, 1, 1, -1, 2, 2, 0};
+  std::vector<std::vector<float>> expect(6, std::vector<float>(4));
+  for (int i = 0; i < 8; ++i) {
+    float x = cb[size_t(i)], y = cb[size_t(8 + i)];
+    expect[size_t(i / 4)][size_t(i % 4)] = std::min(std::max(x, 0.0f), 1.0f);
+    expect[size_t(2 + i / 4)][size_t(i % 4)] = std::max(std::abs(x), y);
+    expect[size_t(4 + i / 4)][size_t(i % 4)] = x + 0.25f * (y - x);
+  }
+  ExpectRows(Run(src, cb, 6), expect);
+}
+
 // A Texture2DArray at t1 read in one pixel shader through a plain and a comparison sampler (a
 // moment-map permutation and a PCF permutation in one): two SPIR-V variables at one register.
 TEST_P(D3D11CompatRun, TextureArrayReadThroughAPlainAndAComparisonSampler) {

@@ -489,6 +489,7 @@ ShaderBytecode CompileSource(std::string_view sourceView, const std::string& fil
   // Before legalisation: a UAV used only through IncrementCounter/DecrementCounter is removed as
   // dead code there, and with it the decoration that ties its counter to its register.
   RemapCounterBindings(spirv, vkbind::kUnorderedAccess, vkbind::kUavCounter);
+  SplitMatrixIntrinsics(spirv);
   spirv = Legalize(spirv, name);
   LowerDotAndMatrixProducts(spirv);
   ConstOffsetsFromConstants(spirv);

@@ -26,7 +26,9 @@ struct Type {
 
 class Lowering {
  public:
-  explicit Lowering(std::vector<uint32_t>& spirv) : in_(spirv) {}
+  // matricesOnly: only the column-by-column split of intrinsics on matrices, which must run
+  // before legalisation (spirv-opt's folding turns lerp(m, n, 0.25) into invalid code first).
+  Lowering(std::vector<uint32_t>& spirv, bool matricesOnly) : in_(spirv), matricesOnly_(matricesOnly) {}
 
   void Run() {
     Scan();
@@ -52,6 +54,7 @@ class Lowering {
       const uint32_t* w = &in_[i];
       if (op == spv::OpTypeVector || op == spv::OpTypeMatrix) types_[w[1]] = {op, w[2], w[3]};
       if (op == spv::OpTypeFloat) types_[w[1]] = {op, 0, 1};
+      if ((op == spv::OpConstantComposite || op == spv::OpCompositeConstruct) && wc > 3) constituents_[w[2]].assign(w + 3, w + wc);
       if (op == spv::OpExtInstImport && std::string(reinterpret_cast<const char*>(w + 2)) == "GLSL.std.450") glsl_ = w[1];
       bool hasResult = false, hasType = false;
       spv::HasResultAndType(op, &hasResult, &hasType);
@@ -111,8 +114,86 @@ class Lowering {
            types_.at(it->second.component).op == spv::OpTypeFloat;
   }
 
+  // The scalar every component of vector `id` holds (a constant or constructed splat), or 0.
+  uint32_t SplatScalar(uint32_t id) const {
+    auto it = constituents_.find(id);
+    if (it == constituents_.end() || it->second.empty()) return 0;
+    for (uint32_t c : it->second)
+      if (c != it->second[0]) return 0;
+    return typeOf_.count(it->second[0]) && types_.count(typeOf_.at(it->second[0])) &&
+                   types_.at(typeOf_.at(it->second[0])).op == spv::OpTypeFloat
+               ? it->second[0]
+               : 0;
+  }
+
+  bool IsFloatMatrix(uint32_t type) const {
+    auto it = types_.find(type);
+    return it != types_.end() && it->second.op == spv::OpTypeMatrix && IsFloatVector(it->second.component);
+  }
+
+  // HLSL's component-wise intrinsics take matrices (abs(m), saturate(m), max(m, n), lerp(a, b, s));
+  // glslang emits the GLSL.std.450 instruction on the matrix type, which SPIR-V allows only on
+  // scalars and vectors. Apply it to each column: the same values, component by component.
+  bool ColumnByColumn(const uint32_t* w, uint32_t wc, std::vector<uint32_t>& out) {
+    const Type& mt = types_.at(w[1]);
+    uint32_t column = mt.component, n = types_.at(column).count;
+    std::vector<uint32_t> operandCols[4];
+    if (wc - 5 > 4) return false;
+    for (uint32_t k = 5; k < wc; ++k) {  // check every operand before emitting anything
+      uint32_t t = typeOf_.count(w[k]) ? typeOf_.at(w[k]) : 0;
+      if (!types_.count(t) || !(IsFloatMatrix(t) || t == column || types_.at(t).op == spv::OpTypeFloat || SplatScalar(w[k])))
+        return false;
+    }
+    for (uint32_t k = 5; k < wc; ++k) {
+      uint32_t t = typeOf_.at(w[k]);
+      for (uint32_t c = 0; c < mt.count; ++c) {
+        if (IsFloatMatrix(t)) {
+          operandCols[k - 5].push_back(Emit(out, spv::OpCompositeExtract, column, {w[k], c}));
+        } else if (t == column) {
+          operandCols[k - 5].push_back(w[k]);
+        } else {
+          // A scalar, or a vector holding one value in some size (glslang passes saturate's
+          // bounds and lerp's literal weight that way): that value in every component.
+          uint32_t scalar = types_.at(t).op == spv::OpTypeFloat ? w[k] : SplatScalar(w[k]);
+          out.push_back(uint32_t(3 + n) << 16 | spv::OpCompositeConstruct);
+          out.push_back(column);
+          uint32_t id = NewId();
+          out.push_back(id);
+          for (uint32_t i = 0; i < n; ++i) out.push_back(scalar);
+          typeOf_[id] = column;
+          operandCols[k - 5].push_back(id);
+        }
+      }
+    }
+    std::vector<uint32_t> cols;
+    for (uint32_t c = 0; c < mt.count; ++c) {
+      if (w[4] == GLSLstd450FMix && wc == 8) {  // lerp: x + s * (y - x), as for vectors
+        uint32_t x = operandCols[0][c], y = operandCols[1][c], t = operandCols[2][c];
+        uint32_t d = Emit(out, spv::OpFSub, column, {y, x});
+        uint32_t p = Emit(out, spv::OpFMul, column, {t, d});
+        cols.push_back(Emit(out, spv::OpFAdd, column, {x, p}));
+        continue;
+      }
+      uint32_t id = NewId();
+      out.push_back(wc << 16 | spv::OpExtInst);
+      out.push_back(column);
+      out.push_back(id);
+      out.push_back(glsl_);
+      out.push_back(w[4]);
+      for (uint32_t k = 5; k < wc; ++k) out.push_back(operandCols[k - 5][c]);
+      typeOf_[id] = column;
+      cols.push_back(id);
+    }
+    out.push_back(uint32_t(3 + cols.size()) << 16 | spv::OpCompositeConstruct);
+    out.push_back(w[1]);
+    out.push_back(w[2]);
+    out.insert(out.end(), cols.begin(), cols.end());
+    return true;
+  }
+
   bool Rewrite(const uint32_t* w, uint32_t wc, std::vector<uint32_t>& out) {
     spv::Op op = spv::Op(w[0] & 0xffff);
+    if (matricesOnly_) return op == spv::OpExtInst && wc >= 6 && w[3] == glsl_ && IsFloatMatrix(w[1]) && ColumnByColumn(w, wc, out);
     switch (op) {
       case spv::OpDot: {
         uint32_t vt = typeOf_.at(w[3]);
@@ -193,12 +274,16 @@ class Lowering {
   std::vector<uint32_t>& in_;
   std::unordered_map<uint32_t, Type> types_;
   std::unordered_map<uint32_t, uint32_t> typeOf_;
+  std::unordered_map<uint32_t, std::vector<uint32_t>> constituents_;  // of composites (constant or constructed)
   uint32_t glsl_ = 0;
   uint32_t bound_ = 0;
+  bool matricesOnly_ = false;
 };
 
 }  // namespace
 
-void LowerDotAndMatrixProducts(std::vector<uint32_t>& spirv) { Lowering(spirv).Run(); }
+void LowerDotAndMatrixProducts(std::vector<uint32_t>& spirv) { Lowering(spirv, false).Run(); }
+
+void SplitMatrixIntrinsics(std::vector<uint32_t>& spirv) { Lowering(spirv, true).Run(); }
 
 }  // namespace sp::hlsl

@@ -49,4 +49,9 @@ void FixAtomicOperandTypes(std::vector<uint32_t>& spirv);
 // bit-identical results (see spirv-arith.cpp).
 void LowerDotAndMatrixProducts(std::vector<uint32_t>& spirv);
 
+// HLSL's component-wise intrinsics take matrices (abs(m), saturate(m), max(m, n), lerp(a, b, s));
+// glslang emits the GLSL.std.450 instruction on the matrix type, which SPIR-V allows only on
+// scalars and vectors. Applies each to the matrix column by column. Runs before legalisation.
+void SplitMatrixIntrinsics(std::vector<uint32_t>& spirv);
+
 }  // namespace sp::hlsl
