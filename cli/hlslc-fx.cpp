@@ -74,6 +74,8 @@ int RunHlslcFx(const std::vector<std::string>& argv) {
       if (d.blendState)
         std::printf("    BlendState %s, factor (%g, %g, %g, %g), sample mask 0x%08x\n", Name(*d.blendState).c_str(), d.blendFactor[0],
                     d.blendFactor[1], d.blendFactor[2], d.blendFactor[3], d.sampleMask);
+      for (const fx::SamplerBindingDesc& b : d.samplers)
+        std::printf("    %s sampler s%u: %s\n", kStagePrefixes[size_t(b.stage)], b.slot, b.sampler.c_str());
     }
   }
   for (const fx::StateObjectDesc& s : effect->States()) {

@@ -188,6 +188,15 @@ TEST(EffectParse, TechniquesPassesAndShaders) {
   EXPECT_EQ(p0.blendState, "bsAlpha");
   EXPECT_EQ(p0.blendFactor, (std::array<float, 4>{0.5f, 0.25f, 1, 0}));
   EXPECT_EQ(p0.sampleMask, 0xFu);
+  // samLinear at the register glslang gave it in the pixel shader (s0: the first free one).
+  ASSERT_EQ(p0.samplers.size(), 1u);
+  EXPECT_EQ(p0.samplers[0].sampler, "samLinear");
+  EXPECT_EQ(p0.samplers[0].stage, ShaderStage::Pixel);
+  EXPECT_EQ(p0.samplers[0].slot, 0u);
+  const fx::PassDesc& shadowPass = effect->GetTechniqueByName("Shadow")->GetPassByIndex(0)->GetDesc();
+  ASSERT_EQ(shadowPass.samplers.size(), 1u);
+  EXPECT_EQ(shadowPass.samplers[0].sampler, "samShadow");
+  EXPECT_EQ(shadowPass.samplers[0].slot, 2u);  // register(s2)
   const fx::PassDesc& p1 = lit->GetPassByIndex(1)->GetDesc();
   ASSERT_TRUE(p1.shaders[1]);
   EXPECT_TRUE(p1.shaders[1]->isNull);
@@ -212,6 +221,20 @@ TEST(EffectParse, TechniquesPassesAndShaders) {
   EXPECT_THROW(lit->GetPassByName("P9"), Error);
   EXPECT_THROW(lit->GetPassByIndex(2), Error);
   EXPECT_EQ(effect->FindTechnique("Missing"), nullptr);
+}
+
+// Several samplers in one declaration, and shader code that only looks like effect syntax.
+TEST(EffectParse, SamplerDeclaratorListsAndLookalikes) {
+  auto e = fx::Effect::LoadFromSource(
+      "SamplerState a : register(s0) { Filter = MIN_MAG_MIP_POINT; }, b : register(s1);\n"
+      "SamplerState Pick(bool x) { return a; }\n"
+      "struct S { BlendState notOurs; };\n",
+      "inline.fx", Options());
+  ASSERT_EQ(e->States().size(), 2u);
+  ASSERT_TRUE(e->FindState("a") && e->FindState("b"));
+  EXPECT_EQ(e->FindState("a")->sampler.Filter, FILTER_MIN_MAG_MIP_POINT);
+  EXPECT_EQ(e->FindState("b")->sampler.Filter, FILTER_MIN_MAG_MIP_LINEAR);
+  EXPECT_EQ(e->GetTechniqueCount(), 0u);
 }
 
 // The shader code of an effect compiles as any HLSL file: the blocks are hidden, sampler states

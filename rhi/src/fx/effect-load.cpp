@@ -187,8 +187,10 @@ std::unique_ptr<Effect> Effect::LoadFromSource(std::string_view source, const st
           if (r.registerClass != RegisterClass::Sampler) continue;
           for (size_t k = 0; k < fx->states_.size(); ++k) {
             const StateObjectDesc& st = fx->states_[k];
-            if ((st.type == StateType::Sampler || st.type == StateType::SamplerComparison) && st.name == r.name)
-              pass->samplers_.push_back({sh->stage, r.registerIndex, k});
+            if ((st.type == StateType::Sampler || st.type == StateType::SamplerComparison) && st.name == r.name) {
+              pass->desc_.samplers.push_back({sh->stage, r.registerIndex, st.name});
+              pass->samplerStates_.push_back(k);
+            }
           }
         }
       }

@@ -61,7 +61,7 @@ class Parser {
           i = Group(i);
           continue;
         }
-        if (t.Is("RasterizerState") || t.Is("DepthStencilState") || t.Is("BlendState")) {
+        if ((t.Is("RasterizerState") || t.Is("DepthStencilState") || t.Is("BlendState")) && !s_.Is(i + 2, "(")) {
           i = StateObject(i);
           continue;
         }
@@ -69,7 +69,7 @@ class Parser {
           i = Sampler(i);
           continue;
         }
-        if (StageOfType(t.text) && i + 1 < s_.size() && s_[i + 1].IsIdentifier()) {
+        if (StageOfType(t.text) && i + 1 < s_.size() && s_[i + 1].IsIdentifier() && !s_.Is(i + 2, "(")) {
           i = ShaderVariableDecl(i);
           continue;
         }
@@ -356,21 +356,39 @@ class Parser {
     return i + 1;
   }
 
-  // SamplerState name [: register(sN)] [< annotations >] [{ fields }]; keeps the declaration.
+  // SamplerState name [: register(sN)] [< annotations >] [{ fields }] [, name ...]; keeps the
+  // declarations (the shader code samples with them) without their blocks.
   size_t Sampler(size_t start) {
+    StateType type = s_[start].Is("SamplerState") ? StateType::Sampler : StateType::SamplerComparison;
+    // A function returning a sampler is shader code, not a declaration of ours.
+    if (!s_.Is(start + 2, "(") && start + 1 < s_.size() && s_[start + 1].IsIdentifier()) {
+      size_t i = start + 1;
+      for (;;) {
+        i = SamplerDeclarator(i, type, start);
+        if (s_.Is(i, ",") && i + 1 < s_.size() && s_[i + 1].IsIdentifier()) {
+          ++i;
+          continue;
+        }
+        Expect(i, ";", std::string("after the ") + StateTypeName(type) + " declaration");
+        return i + 1;
+      }
+    }
+    return start + 1;  // not ours (or malformed): glslang reports what it makes of it
+  }
+
+  // One declarator at `i`; returns the index after it.
+  size_t SamplerDeclarator(size_t i, StateType type, size_t typeToken) {
     StateObjectDesc st;
-    st.type = s_[start].Is("SamplerState") ? StateType::Sampler : StateType::SamplerComparison;
-    size_t i = start + 1;
-    if (i >= s_.size() || !s_[i].IsIdentifier()) return start + 1;  // let glslang report it
-    st.name = s_[i++].text;
-    st.location = Loc(start);
+    st.type = type;
+    st.name = s_[i].text;
+    st.location = Loc(typeToken);
+    size_t nameToken = i++;
     if (s_.Is(i, "[")) {
       // Arrays of samplers are plain HLSL without a block; with one they would need per-element state.
-      size_t m = s_.Matching(i);
-      size_t after = m + 1;
-      while (after < s_.size() && !s_[after].Is(";") && !s_[after].Is("{")) ++after;
+      size_t after = s_.Matching(i) + 1;
+      while (after < s_.size() && !s_[after].Is(";") && !s_[after].Is("{") && !s_[after].Is(",")) ++after;
       if (s_.Is(after, "{")) s_.Fail(i, "arrays of sampler states with a state block are not supported");
-      return after + 1;
+      return after;
     }
     if (s_.Is(i, ":")) {
       // `: register(s0)`
@@ -389,9 +407,8 @@ class Parser {
       out_.hidden.push_back({i, close});
       i = close + 1;
     }
-    Expect(i, ";", std::string("after ") + StateTypeName(st.type) + " " + st.name);
-    AddState(std::move(st), start);
-    return i + 1;
+    AddState(std::move(st), nameToken);
+    return i;
   }
 
   void AddState(StateObjectDesc st, size_t token) {

@@ -117,8 +117,9 @@ void EffectPass::Apply(DeviceContext& ctx) const {
   if (desc_.depthStencilState)
     ctx.OMSetDepthStencilState(static_cast<DepthStencilState*>(state(*desc_.depthStencilState)), desc_.stencilRef);
   if (desc_.blendState) ctx.OMSetBlendState(static_cast<BlendState*>(state(*desc_.blendState)), desc_.blendFactor.data(), desc_.sampleMask);
-  for (const SamplerBinding& b : samplers_) {
-    SamplerState* s = static_cast<SamplerState*>(fx.stateObjects_[b.state].get());
+  for (size_t i = 0; i < desc_.samplers.size(); ++i) {
+    const SamplerBindingDesc& b = desc_.samplers[i];
+    SamplerState* s = static_cast<SamplerState*>(fx.stateObjects_[samplerStates_[i]].get());
     switch (b.stage) {
       case ShaderStage::Vertex: ctx.VSSetSamplers(b.slot, 1, &s); break;
       case ShaderStage::Pixel: ctx.PSSetSamplers(b.slot, 1, &s); break;

@@ -77,6 +77,14 @@ struct ShaderDesc {
   std::string error;                 // with EffectOptions::failOnCompileError = false
 };
 
+// An effect sampler state a pass's shader uses, at the register the compiled shader reads it
+// from (reflection), which Apply binds it to.
+struct SamplerBindingDesc {
+  ShaderStage stage = ShaderStage::Pixel;
+  uint32_t slot = 0;  // the N of sN
+  std::string sampler;
+};
+
 struct PassDesc {
   std::string name;
   SourceLocation location;
@@ -87,6 +95,7 @@ struct PassDesc {
   uint32_t stencilRef = 0;
   std::array<float, 4> blendFactor{1, 1, 1, 1};
   uint32_t sampleMask = 0xffffffffu;
+  std::vector<SamplerBindingDesc> samplers;
 };
 
 class Effect;
@@ -104,14 +113,9 @@ class EffectPass {
 
  private:
   friend class Effect;
-  struct SamplerBinding {
-    ShaderStage stage;
-    uint32_t slot;
-    size_t state;  // index into Effect's states
-  };
   const Effect* effect_ = nullptr;
   PassDesc desc_;
-  std::vector<SamplerBinding> samplers_;
+  std::vector<size_t> samplerStates_;  // parallel to desc_.samplers: indices into the effect's states
   Ref<VertexShader> vs_;
   Ref<PixelShader> ps_;
   Ref<GeometryShader> gs_;
