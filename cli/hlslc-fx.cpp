@@ -84,6 +84,7 @@ int RunHlslcFx(const std::vector<std::string>& argv) {
     else std::printf("\n");
     for (const std::string& f : s.setFields) std::printf("    %s\n", f.c_str());
   }
+  std::fflush(stdout);  // the summary comes after the listing, also when both go to one terminal
   if (errors) std::fprintf(stderr, "%s: %d shader%s did not compile\n", file.c_str(), errors, errors == 1 ? "" : "s");
   return errors ? 1 : 0;
 }

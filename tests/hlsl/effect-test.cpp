@@ -266,6 +266,30 @@ TEST(EffectParse, ShaderCodeOfAnEffectCompilesWithTheBlocksHidden) {
   }
 }
 
+TEST(EffectParse, IncludeInsideAPassKeepsLineNumbers) {
+  fx::EffectOptions opt = Options();
+  opt.failOnCompileError = false;  // PSBroken fails every compile of the file
+  auto effect = fx::Effect::Load(FxDir() / "include-in-pass.fx", opt);
+  const fx::PassDesc& p = effect->GetTechniqueByIndex(0)->GetPassByIndex(0)->GetDesc();
+  ASSERT_TRUE(p.shaders[1]);
+  EXPECT_NE(p.shaders[1]->error.find("include-in-pass.fx:10: error: 'undeclared'"), std::string::npos) << p.shaders[1]->error;
+  EXPECT_EQ(p.shaders[1]->function, "PS");
+  EXPECT_NE(p.shaders[1]->location.file.find("pass-body.fxh"), std::string::npos) << p.shaders[1]->location.file;
+  EXPECT_EQ(p.shaders[1]->location.line, 2);
+  EXPECT_EQ(p.rasterizerState, "");
+  hlsl::CompileOptions o;
+  o.target = "ps_5_0";
+  o.entryPoint = "PSBroken";
+  o.useCache = false;
+  try {
+    hlsl::CompileFile(FxDir() / "include-in-pass.fx", o);
+    FAIL() << "no error";
+  } catch (const hlsl::CompileError& e) {
+    ASSERT_FALSE(e.diagnostics().empty());
+    EXPECT_EQ(e.diagnostics()[0].line, 10) << e.what();
+  }
+}
+
 TEST(EffectParse, ErrorsNameFileAndLine) {
   EXPECT_EQ(LoadError("\nRasterizerState rs {\n  CullMode = SIDEWAYS;\n};\n"),
             "inline.fx:3: unknown value 'SIDEWAYS' for effect state field 'CullMode' (valid: NONE, FRONT, BACK, or a number)");
@@ -366,6 +390,65 @@ TEST_P(EffectDrawTest, PassesApplyShadersStatesAndSamplers) {
         ASSERT_NEAR(px[(y * W + x) * 4 + c], texel[c] / 255.0f, 1e-6) << "pixel " << x << "," << y << " channel " << c;
     }
   EXPECT_TRUE(validationMessages.empty());
+}
+
+// What Apply binds and leaves, read back through the context's Get calls: NULL unbinds, states a
+// pass does not name stay, the stencil reference, blend factor and sample mask go with their state.
+TEST_P(EffectDrawTest, ApplyBindsWhatThePassNamesAndLeavesTheRest) {
+  auto effect = fx::Effect::Load(FxDir() / "states.fx", Options());
+  fx::EffectTechnique* lit = effect->GetTechniqueByName("Lit");
+  EXPECT_THROW(lit->GetPassByIndex(0)->Apply(ctx()), Error);  // no objects yet
+  effect->CreateObjects(device());
+  lit->GetPassByIndex(0)->Apply(ctx());
+  Ref<PixelShader> ps;
+  Ref<RasterizerState> rs;
+  Ref<DepthStencilState> ds;
+  Ref<BlendState> bs;
+  Ref<SamplerState> sam;
+  uint32_t ref = 0, mask = 0;
+  float factor[4] = {};
+  ctx().PSGetShader(&ps);
+  EXPECT_TRUE(ps);
+  ctx().RSGetState(&rs);
+  ASSERT_TRUE(rs);
+  EXPECT_EQ(rs->GetDesc().FillMode, FILL_WIREFRAME);
+  ctx().OMGetDepthStencilState(&ds, &ref);
+  ASSERT_TRUE(ds);
+  EXPECT_EQ(ds->GetDesc().DepthFunc, COMPARISON_GREATER_EQUAL);
+  EXPECT_EQ(ref, 0x80u);
+  ctx().OMGetBlendState(&bs, factor, &mask);
+  ASSERT_TRUE(bs);
+  EXPECT_EQ(bs->GetDesc().RenderTarget[0].SrcBlend, BLEND_SRC_ALPHA);
+  EXPECT_EQ(factor[1], 0.25f);
+  EXPECT_EQ(mask, 0xFu);
+  ctx().PSGetSamplers(0, 1, &sam);
+  ASSERT_TRUE(sam);
+  EXPECT_EQ(sam->GetDesc().Filter, FILTER_ANISOTROPIC);  // samLinear at s0
+
+  lit->GetPassByIndex(1)->Apply(ctx());
+  ctx().PSGetShader(&ps);
+  EXPECT_FALSE(ps);  // SetPixelShader(psNone), psNone = NULL
+  ctx().RSGetState(&rs);
+  ASSERT_TRUE(rs);
+  EXPECT_EQ(rs->GetDesc().FillMode, FILL_WIREFRAME);  // P1 does not name a rasterizer state
+  ctx().OMGetBlendState(&bs, factor, &mask);
+  ASSERT_TRUE(bs);
+  EXPECT_FALSE(bs->GetDesc().RenderTarget[0].BlendEnable);
+  EXPECT_EQ(mask, 0xFFFFFFFFu);
+}
+
+// A pass whose shader did not compile (kept by failOnCompileError = false) stops CreateObjects.
+TEST_P(EffectDrawTest, CreateObjectsRefusesAPassThatDidNotCompile) {
+  fx::EffectOptions opt = Options();
+  opt.failOnCompileError = false;
+  auto effect = fx::Effect::Load(FxDir() / "include-in-pass.fx", opt);
+  try {
+    effect->CreateObjects(device());
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("technique T, pass P: the pixel shader did not compile"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(effect->HasObjects());
 }
 
 SP_INSTANTIATE_BACKEND_TESTS(EffectDrawTest);

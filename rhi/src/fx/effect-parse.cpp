@@ -137,6 +137,10 @@ class Parser {
     size_t close = s_.Matching(i);
     if (close >= s_.size()) s_.Fail(i, "fxgroup " + name + " has no closing '}'");
     for (size_t j = i + 1; j < close;) {
+      if (s_[j].kind == TokenKind::Directive) {
+        ++j;
+        continue;
+      }
       std::string lower = Lower(s_[j].text);
       if (lower == "technique" || lower == "technique10" || lower == "technique11") j = Technique(j, name, false);
       else s_.Fail(j, "expected a technique11 in fxgroup " + name + ", found '" + s_[j].text + "'");
@@ -157,6 +161,10 @@ class Parser {
     size_t close = s_.Matching(i);
     if (close >= s_.size()) s_.Fail(i, "technique " + tech.name + " has no closing '}'");
     for (size_t j = i + 1; j < close;) {
+      if (s_[j].kind == TokenKind::Directive) {
+        ++j;
+        continue;
+      }
       if (!s_[j].Is("pass")) s_.Fail(j, "expected 'pass' in technique " + tech.name + ", found '" + s_[j].text + "'");
       j = Pass(j, tech);
     }
@@ -175,7 +183,7 @@ class Parser {
     Expect(i, "{", "after pass " + pass.desc.name);
     size_t close = s_.Matching(i);
     if (close >= s_.size()) s_.Fail(i, "pass " + pass.desc.name + " has no closing '}'");
-    for (size_t j = i + 1; j < close;) j = PassStatement(j, close, pass);
+    for (size_t j = i + 1; j < close;) j = s_[j].kind == TokenKind::Directive ? j + 1 : PassStatement(j, close, pass);
     tech.passes.push_back(std::move(pass));
     return s_.Is(close + 1, ";") ? close + 2 : close + 1;
   }
@@ -422,6 +430,10 @@ class Parser {
     size_t close = s_.Matching(open);
     if (close >= s_.size()) s_.Fail(open, std::string(StateTypeName(st.type)) + " " + st.name + " has no closing '}'");
     for (size_t j = open + 1; j < close;) {
+      if (s_[j].kind == TokenKind::Directive) {
+        ++j;
+        continue;
+      }
       size_t field = j;
       if (!s_[j].IsIdentifier()) s_.Fail(j, "expected a field name in " + std::string(StateTypeName(st.type)) + " " + st.name + ", found '" + s_[j].text + "'");
       ++j;

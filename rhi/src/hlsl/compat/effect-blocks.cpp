@@ -10,7 +10,16 @@ namespace sp::hlsl::compat {
 
 void RewriteEffectBlocks(const Source& source, Edits& edits) {
   fx::detail::ParsedEffect effect = fx::detail::ParseEffect(source);
-  for (auto [first, last] : effect.hidden) edits.Replace(source[first].begin, source[last].end, "");
+  // #line directives inside a block (an #include in a technique) stay, or glslang's later line
+  // numbers would be wrong.
+  for (auto [first, last] : effect.hidden) {
+    size_t run = first;
+    for (size_t i = first; i <= last + 1; ++i) {
+      if (i <= last && source[i].kind != TokenKind::Directive) continue;
+      if (run < i) edits.Replace(source[run].begin, source[i - 1].end, "");
+      run = i + 1;
+    }
+  }
 }
 
 }  // namespace sp::hlsl::compat
