@@ -225,12 +225,10 @@ class Parser {
     if (t.Is("SetRasterizerState")) {
       argCount(1);
       pass.desc.rasterizerState = StateName(args[0], StateType::Rasterizer);
-      pass.stateLocation[0] = Loc(i);
     } else if (t.Is("SetDepthStencilState")) {
       argCount(2);
       pass.desc.depthStencilState = StateName(args[0], StateType::DepthStencil);
       pass.desc.stencilRef = uint32_t(Number(args[1], "the stencil reference"));
-      pass.stateLocation[1] = Loc(i);
     } else if (t.Is("SetBlendState")) {
       argCount(3);
       pass.desc.blendState = StateName(args[0], StateType::Blend);
@@ -241,7 +239,6 @@ class Parser {
       if (comps.size() != 4) s_.Fail(f0, "SetBlendState's blend factor takes 4 components");
       for (size_t k = 0; k < 4; ++k) pass.desc.blendFactor[k] = float(Number(comps[k], "a blend factor component"));
       pass.desc.sampleMask = uint32_t(int64_t(Number(args[2], "the sample mask")));
-      pass.stateLocation[2] = Loc(i);
     } else if (!handled) {
       s_.Fail(i, "unknown pass statement '" + t.text +
                      "' (valid: SetVertexShader, SetPixelShader, SetGeometryShader, SetComputeShader, SetRasterizerState, "

@@ -27,7 +27,6 @@ struct ShaderVariable {
 
 struct ParsedPass {
   PassDesc desc;  // without bytecode; shaders[] hold the expressions' fields
-  SourceLocation stateLocation[3];  // of SetRasterizerState, SetDepthStencilState, SetBlendState
 };
 
 struct ParsedTechnique {
