@@ -49,6 +49,7 @@ int RunReportScript(const std::vector<std::string>& results, const std::string& 
 
 int RunRender(const Args& args);
 int RunHlslc(const std::vector<std::string>& argv);
+int RunHlslcFx(const std::vector<std::string>& argv);  // hlslc --fx
 int RunDemo(const Args& args);
 int RunConformance(const Args& args);
 int RunBench(const Args& args);

@@ -1,6 +1,7 @@
 // `shadowport hlslc`: fxc-style front end to the HLSL toolchain, for checking what of an existing
 // D3D11 shader ports:  shadowport hlslc shadow.hlsl /T ps_4_0 /E PSMain /D PCF=1 /I inc /Zpr /Fo out
 // Options take fxc's spellings with '-' or '/'; values follow attached (-Tps_5_0) or separately.
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -145,6 +146,7 @@ int WritePreprocessed(Command& c) {
 }  // namespace
 
 int RunHlslc(const std::vector<std::string>& argv) {
+  if (std::find(argv.begin(), argv.end(), "--fx") != argv.end()) return RunHlslcFx(argv);  // cli/hlslc-fx.cpp
   Command c = Parse(argv);
   if (c.help) {
     Usage();

@@ -32,7 +32,9 @@ void Help() {
       "  conformance [--backend vulkan|gl|both] [--out dir] [--filter text] [--verbose]\n"
       "          runs the D3D11 conformance probes; prints the feature x backend table, writes Markdown and JSON\n"
       "  hlslc   file.hlsl -T vs_5_0|ps_5_0|cs_5_0 [-E entry] [-D NAME[=VALUE]] [-I dir] [-Fo out]\n"
-      "          compiles HLSL like fxc: writes out.spv, out.glsl and out.json (reflection)\n");
+      "          compiles HLSL like fxc: writes out.spv, out.glsl and out.json (reflection)\n"
+      "  hlslc   --fx file.fx [-D NAME[=VALUE]] [-I dir]\n"
+      "          lists an FX11 effect's techniques, passes (each stage compiled) and state objects\n");
 }
 
 }  // namespace

@@ -305,10 +305,9 @@ constexpr auto kMessages = EShMessages(EShMsgSpvRules | EShMsgVulkanRules | EShM
 
 }  // namespace
 
-// glslang's preprocessor (defines, includes, -Zpr/-Zpc), then the D3D11 compatibility rewrites:
-// the text glslang's parser is given, with #line directives naming the user's files.
-static compat::Result PreprocessWithRewrites(const std::string& source, const std::string& fileName, const CompileOptions& opt,
-                                      ShaderStage stage, const std::string& entry, glslang::TShader::Includer& includer) {
+// glslang's preprocessor alone (defines, includes), with #line directives naming the user's files.
+static std::string RunPreprocessor(const std::string& source, const std::string& fileName, const CompileOptions& opt,
+                                   ShaderStage stage, const std::string& entry, glslang::TShader::Includer& includer) {
   std::call_once(gInitOnce, [] { glslang::InitializeProcess(); });
   glslang::TShader shader(LanguageOf(stage));
   const char* src = source.c_str();
@@ -324,6 +323,14 @@ static compat::Result PreprocessWithRewrites(const std::string& source, const st
     std::string log = std::string(shader.getInfoLog()) + shader.getInfoDebugLog();
     throw CompileError("glslang (preprocessor)", fileName + ":" + entry, ParseGlslangLog(log, fileName), log);
   }
+  return out;
+}
+
+// glslang's preprocessor (defines, includes, -Zpr/-Zpc), then the D3D11 compatibility rewrites:
+// the text glslang's parser is given, with #line directives naming the user's files.
+static compat::Result PreprocessWithRewrites(const std::string& source, const std::string& fileName, const CompileOptions& opt,
+                                      ShaderStage stage, const std::string& entry, glslang::TShader::Includer& includer) {
+  std::string out = RunPreprocessor(source, fileName, opt, stage, entry, includer);
   // fxc's -Zpr/-Zpc set the packing of matrices declared without row_major/column_major; the
   // pragma does the same in glslang (and a pack_matrix pragma in the source still wins after it).
   // It goes before the preprocessed text, not into the preamble, whose pragmas the preprocessor
@@ -525,6 +532,12 @@ std::string Preprocess(std::string_view source, const std::string& fileName, con
   compat::Result r = PreprocessWithRewrites(std::string(source), fileName, opt, stage, opt.entryPoint.empty() ? "main" : opt.entryPoint, includer);
   if (rewritesApplied) *rewritesApplied = r.applied;
   return r.source;
+}
+
+std::string PreprocessOnly(std::string_view source, const std::string& fileName, const CompileOptions& opt) {
+  std::lock_guard lock(gCompileMutex);
+  Includer includer(fs::path(fileName).parent_path(), opt.includeDirs);
+  return RunPreprocessor(std::string(source), fileName, opt, ShaderStage::Pixel, "main", includer);
 }
 
 ShaderBytecode CompileFile(const fs::path& file, const CompileOptions& opt, std::vector<Diagnostic>* warnings) {

@@ -47,6 +47,11 @@ struct GlStageBases {
 GlStageBases GlBasesForStage(ShaderStage stage);
 inline constexpr uint32_t kGlUavCounterBase = 8;  // storage-block binding of uN's counter: 8 + N
 
+// glslang's preprocessor alone: defines applied, includes inlined, #line directives naming the
+// user's files, before the D3D11 compatibility rewrites. sp::fx reads effect blocks from it.
+// Throws CompileError.
+std::string PreprocessOnly(std::string_view source, const std::string& fileName, const CompileOptions& options);
+
 // "" when `flags` is a valid combination of COMPILE_* bits, else the reason it is not.
 std::string CheckCompileFlags(uint32_t flags);
 
