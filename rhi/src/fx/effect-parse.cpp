@@ -88,7 +88,6 @@ class Parser {
       statementStart = t.Is(";") || t.Is("}");
       ++i;
     }
-    HideUniformQualifiers();
     return std::move(out_);
   }
 
@@ -454,34 +453,6 @@ class Parser {
       j = v1 + 1;
     }
     return close;
-  }
-
-  // fxc gives a function's `uniform` parameters their values from CompileShader's arguments;
-  // sp::fx calls the function from a generated entry point instead, for which they are ordinary
-  // parameters. glslang's HLSL front end mistranslates `uniform` on a parameter (spirv-opt then
-  // crashes on its output), so the qualifier is hidden on the functions CompileShader calls with
-  // arguments.
-  void HideUniformQualifiers() {
-    std::vector<std::string> functions;
-    auto note = [&](const std::optional<ShaderDesc>& sh) {
-      if (sh && !sh->isNull && !sh->arguments.empty()) functions.push_back(sh->function);
-    };
-    for (const ParsedTechnique& t : out_.techniques)
-      for (const ParsedPass& p : t.passes)
-        for (const auto& sh : p.desc.shaders) note(sh);
-    if (functions.empty()) return;
-    for (size_t i = 0; i + 1 < s_.size(); ++i) {
-      if (!s_[i].IsIdentifier() || !s_.Is(i + 1, "(") ||
-          std::find(functions.begin(), functions.end(), s_[i].text) == functions.end())
-        continue;
-      size_t close = s_.Matching(i + 1);
-      if (close >= s_.size()) continue;
-      size_t j = close + 1;
-      if (s_.Is(j, ":")) j += 2;
-      if (!s_.Is(j, "{") && !s_.Is(j, ";")) continue;  // a call, not a definition or declaration
-      for (size_t k = i + 2; k < close; ++k)
-        if (s_[k].Is("uniform")) out_.hidden.push_back({k, k});
-    }
   }
 
   const Source& s_;

@@ -339,7 +339,7 @@ static compat::Result PreprocessWithRewrites(const std::string& source, const st
   if (opt.flags1 & COMPILE_PACK_MATRIX_ROW_MAJOR) pragmas = "#pragma pack_matrix(row_major)\n";
   if (opt.flags1 & COMPILE_PACK_MATRIX_COLUMN_MAJOR) pragmas = "#pragma pack_matrix(column_major)\n";
   try {
-    compat::Result r = compat::Apply(out, fileName);
+    compat::Result r = compat::Apply(out, fileName, entry);
     if (!pragmas.empty()) r.source = pragmas + "#line 1 \"" + fileName + "\"\n" + r.source;
     return r;
   } catch (const compat::RewriteError& e) {
@@ -426,11 +426,16 @@ std::vector<uint32_t> StripHlslDecorations(const std::vector<uint32_t>& in, cons
   return out;
 }
 
-void Validate(const std::vector<uint32_t>& spirv, const std::string& fileName, const std::string& name) {
+// `beforeLegalization`: glslang's raw output, which may still keep resources in locals and the
+// like (spirv-val's --before-hlsl-legalization). spirv-opt assumes valid input and can crash on
+// what glslang sometimes emits, so its input is checked too.
+void Validate(const std::vector<uint32_t>& spirv, const std::string& fileName, const std::string& name,
+              bool beforeLegalization = false) {
   ToolMessages log;
   spvtools::SpirvTools tools(SPV_ENV_VULKAN_1_1);
   tools.SetMessageConsumer([&log](spv_message_level_t l, const char* s, const spv_position_t& p, const char* m) { log(l, s, p, m); });
   spvtools::ValidatorOptions vo;
+  vo.SetBeforeHlslLegalization(beforeLegalization);
   vo.SetRelaxBlockLayout(true);  // HLSL packing (float3 after float) is legal under Vulkan 1.1's relaxed layout
   if (!tools.Validate(spirv.data(), spirv.size(), vo)) {
     std::string msg = "the generated SPIR-V is invalid (a glslang limitation with this HLSL construct): " + log.text;
@@ -497,6 +502,7 @@ ShaderBytecode CompileSource(std::string_view sourceView, const std::string& fil
   // dead code there, and with it the decoration that ties its counter to its register.
   RemapCounterBindings(spirv, vkbind::kUnorderedAccess, vkbind::kUavCounter);
   SplitMatrixIntrinsics(spirv);
+  Validate(spirv, fileName, name, true);
   spirv = Legalize(spirv, name);
   LowerDotAndMatrixProducts(spirv);
   ConstOffsetsFromConstants(spirv);

@@ -11,6 +11,7 @@ const std::vector<Rewrite>& Rewrites() {
       {"array-cast", "an array reinterpreted by a cast, (float[8])packedFloat4s", RewriteArrayCasts},
       {"initializer-list", "brace-elided and flat initializer lists for structs, vectors and arrays", RewriteInitializerLists},
       {"matrix-swizzle", "matrix swizzles (m._11_21_31, m._m00_m10), read and written", RewriteMatrixSwizzles},
+      {"uniform-parameter", "`uniform` on the parameters of functions other than the entry point", RewriteUniformParameters},
   };
   return kRewrites;
 }
@@ -31,14 +32,14 @@ void CheckNesting(const Source& s) {
   }
 }
 
-Result Apply(const std::string& preprocessed, const std::string& mainFile) {
+Result Apply(const std::string& preprocessed, const std::string& mainFile, const std::string& entryPoint) {
   Result r;
   r.source = preprocessed;
   CheckNesting(Source(preprocessed, mainFile));
   for (const Rewrite& rw : Rewrites()) {
     // A rewrite skips a construct nested in one it is rewriting; the next round gets it.
     for (int round = 0; round < 8; ++round) {
-      Source src(r.source, mainFile);
+      Source src(r.source, mainFile, entryPoint);
       Edits edits;
       rw.run(src, edits);
       if (edits.empty()) break;

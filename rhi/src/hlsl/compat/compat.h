@@ -27,9 +27,9 @@ struct Result {
   std::vector<std::string> applied;  // names of the rewrites that changed something
 };
 
-// Runs every rewrite over `preprocessed` (glslang's preprocessor output for `mainFile`).
-// Throws RewriteError.
-Result Apply(const std::string& preprocessed, const std::string& mainFile);
+// Runs every rewrite over `preprocessed` (glslang's preprocessor output for `mainFile`, compiled
+// for `entryPoint`). Throws RewriteError.
+Result Apply(const std::string& preprocessed, const std::string& mainFile, const std::string& entryPoint = {});
 
 // One rewrite per construct (compat/<name>.cpp).
 void RewriteEffectBlocks(const Source& source, Edits& edits);
@@ -38,5 +38,6 @@ void RewriteCbufferStatics(const Source& source, Edits& edits);
 void RewriteArrayCasts(const Source& source, Edits& edits);
 void RewriteInitializerLists(const Source& source, Edits& edits);
 void RewriteMatrixSwizzles(const Source& source, Edits& edits);
+void RewriteUniformParameters(const Source& source, Edits& edits);
 
 }  // namespace sp::hlsl::compat

@@ -16,7 +16,8 @@ constexpr const char* kPuncts[] = {"<<=", ">>=", "++", "--", "+=", "-=", "*=", "
 
 }  // namespace
 
-Source::Source(std::string text, const std::string& mainFile) : text_(std::move(text)) {
+Source::Source(std::string text, const std::string& mainFile, std::string entryPoint)
+    : text_(std::move(text)), entryPoint_(std::move(entryPoint)) {
   files_.push_back(mainFile);
   int file = 0, line = 1;
   bool lineStart = true;

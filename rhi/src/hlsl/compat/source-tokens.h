@@ -36,8 +36,9 @@ struct RewriteError : std::runtime_error {
 
 class Source {
  public:
-  // `mainFile` names lines before the first #line directive.
-  Source(std::string text, const std::string& mainFile);
+  // `mainFile` names lines before the first #line directive; `entryPoint` is the function being
+  // compiled (some fxc rules differ for it), empty when not known.
+  Source(std::string text, const std::string& mainFile, std::string entryPoint = {});
 
   const std::string& text() const { return text_; }
   const std::vector<Token>& tokens() const { return tokens_; }
@@ -47,6 +48,7 @@ class Source {
   bool Is(size_t i, std::string_view s) const { return i < tokens_.size() && tokens_[i].Is(s); }
   const std::string& FileOf(size_t i) const { return files_[tokens_[i].file]; }
   const std::string& mainFile() const { return files_[0]; }
+  const std::string& entryPoint() const { return entryPoint_; }
 
   // Index of the bracket closing the one at `open` ((, [, {), or size() when unbalanced.
   size_t Matching(size_t open) const;
@@ -64,6 +66,7 @@ class Source {
   std::string text_;
   std::vector<Token> tokens_;
   std::vector<std::string> files_;
+  std::string entryPoint_;
 };
 
 // Replacements of byte ranges of one Source, applied together. Overlapping edits are a bug in
