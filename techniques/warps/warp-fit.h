@@ -1,0 +1,154 @@
+// The CPU math of perspective shadow-map warps (issue 12, first step): PSM, LiSPSM and TSM for a
+// directional light, and the uniform focused map every one of them degrades to. Pure math on a
+// camera, a light direction and the body of interest, so tests and the lab can check it without
+// a device.
+//
+// Spaces and conventions
+//   World -> light view: right-handed, looking down -z along the light's travel direction L (as
+//   csm's SharedLightView), with its y axis the view direction's component perpendicular to L
+//   (the "warp axis"; the camera's up vector where the view is parallel to L). In light view the
+//   viewer looks towards +y; X is a light-view x, Y a light-view y.
+//   Clip: D3D11, x and y in [-1, 1] after the divide, z in [0, 1]; texture row 0 at the top. The
+//   near side of the body (small Y, where the camera is) is mapped to the top rows.
+//   The body of interest B: the view-frustum slice [d0, d1] clipped to the scene bounds (csm's
+//   SliceCorners / SliceBoxIntersection, see MakeWarpInput). The casters that matter: the part of
+//   the caster bounds inside B's light-view x/y box, extruded towards the light.
+//
+// One structure for every warp. A shadow map of a directional light whose matrix is a 4x4 sends
+// every light ray to one texel, so its x, y and w rows have no component along L: they are a 2D
+// homography H of the light-view plane (X, Y). The warps differ only in H:
+//   none    H = identity (orthographic)                         u = X, v = Y, w = 1
+//   LiSPSM  perspective along the warp axis, centre n before B   u = X - ex, v = Y - y0, w = 1 + k (Y - y0)
+//   TSM     the same family, k from the trapezoid's focus line  (the 2DH maps its trapezoid to the square)
+//   PSM     H induced by the camera's post-projective space, see below
+// followed by the same fit (FitRows): the bounding rectangle of u/w, v/w over B maps to [-1, 1]
+// (unit-cube clipping), and the depth row. Depth: t = (distance along L) / w; far = max over B,
+// near = min over B and its casters. So viewProj's depth is post-projective (what a depth buffer
+// stores when viewProj is used as is, not linear in light space for a warp); WarpFit::linearDepth
+// is the light-space linear alternative (its own row, not divided by w: the TSM paper handles z
+// separately, the shader writes linearDepth * w to clip z, or stores it in an R32 target).
+// Casters between B and the light land in [0, 1] (the near plane is at the nearest of them);
+// anything nearer the light outside that region lands in front of the near plane (z < 0, clamped
+// by the rasterizer: pancaking, as csm does).
+//
+// LiSPSM (Wimmer, Scherzer, Purgathofer 2004). The perspective P has its eye on the line through
+// the camera parallel to the warp axis, at distance n before B's near side y0 = min Y over B; with
+// k = 1/n, w = 1 + k (Y - y0) is P's homogeneous w (Y - y0 + n) divided by n, so k = 0 is exactly
+// the uniform map. The paper's optimum n_opt = (z_n + sqrt(z_n z_f)) / sin(gamma) is written in
+// view depths; it comes from equalising the perspective error y^2 / z at both ends of B when view
+// depth z grows linearly along the warp axis (y = n + (z - z_n) d / (z_f - z_n)): that gives
+// n = d sqrt(z_n) / (sqrt(z_f) - sqrt(z_n)) = d (z_n + sqrt(z_n z_f)) / (z_f - z_n). We use
+//   n_opt = d / (z_f - z_n) * (z_n + sqrt(z_n z_f)) / sin(gamma),
+// d = B's extent along the warp axis (light-space units), z_n, z_f = B's nearest and farthest view
+// depths: the paper's formula in light-space units (identical to it for the whole frustum at
+// gamma = 90 degrees, where d = z_f - z_n), with its 1/sin(gamma) that weakens the warp as the
+// light turns parallel to the view. n = lispsmScale * n_opt. Fallback rule: k = sin(gamma) /
+// (lispsmScale * ...) goes to 0 continuously as gamma -> 0 or 180 degrees, so the map tends to the
+// uniform one with no threshold and no pop; k = 0 exactly at gamma = 0, 180, for a flat body or
+// lispsmScale = +inf. At k = 1/n_opt and gamma = 90 the texel density along the view falls as
+// 1/z (near/far = z_f / z_n along v, sqrt(z_f / z_n) along u): the paper's prediction.
+//
+// TSM (Martin and Tan 2004). In the light's post-perspective space (for a directional light the
+// orthographic light view), B projects to a 2D point set; the centre line is the projection of the
+// camera's axis (through the near and far centres), here the warp axis through the camera. The
+// top and base lines are perpendicular to it and touch B's 2D convex hull at Y = y0 and Y = y1
+// (lambda = y1 - y0). The apex q lies on the centre line at distance eta before the top line, the
+// sides pass through q and touch the hull, and the 2D homography (2DH) maps this trapezoid to the
+// square. The 2DH is the perspective from q along the centre line followed by a scale, i.e. the
+// LiSPSM family above with k = 1/eta; the hull is implicit (the extremes of u/w and v/w over B are
+// attained at hull vertices), and WarpFit::trapezoid gives its corners. The 80 % rule: the focus
+// line, perpendicular to the centre line through the camera axis at view depth
+// z_n + tsmFocusDepth (z_f - z_n), at distance delta from the top, maps to v = tsmFocus (0.8):
+// with v(t) = t (1 + k lambda) / (lambda (1 + k t)), t = Y - y0, v(delta) = xi gives
+//   k = (xi - delta / lambda) / (delta (1 - xi))        (the paper's eta = 1/k, in [0, 1] terms)
+// clamped at 0 (a focus line already at or beyond xi needs no warp: uniform). Fallback rule: the
+// centre line degenerates as the light turns parallel to the view, so k is multiplied by
+// fade(gamma') = smoothstep(5, 20 degrees, gamma'), gamma' = min(gamma, 180 - gamma).
+// Depth: TSM's paper keeps z linear in light space; its fit sets preferLinearDepth.
+//
+// PSM (Stamminger and Drettakis 2002, with Kozlov's fixes, GPU Gems ch. 14). The shadow map is
+// rendered in the post-projective space of a virtual camera: the real one slid back along its
+// axis by s = s_min + psmSlideBack (z_f - z_n), s_min the least that puts B and its casters
+// at least z_n / 2 in front of it (Kozlov's virtual slide-back), with the near plane at the nearest
+// of them and the far plane at infinity (Z-infinity: the light's post-projective image then lies
+// on z = 1, never inside B). The directional light becomes the homogeneous point
+// Lh = PV' (-L, 0) = (l, lw): a point light at l / lw when lw > 0 (light in front of the viewer),
+// a point "beyond infinity" when lw < 0 (light behind: the inverted projection, rays converge
+// behind the scene and depth order along them is reversed), a direction when lw = 0 (light
+// parallel to the view plane). All three are one formula: ray directions D(Q) = lw Q - l, the
+// light camera's axis a = normalize(lw c - l) (c = centre of B's post-projective bounding box),
+// image rows e1 (Q - c), e2 (Q - c) and w row a . D(Q) (e1, e2 perpendicular to a; the image
+// scaled by 1/lw, which the fit removes, so it is smooth through lw = 0). psmSlideBack -> +inf
+// tends to the uniform map; +inf is exactly uniform. Fallback rule: PSM is degenerate when a
+// point of B or its casters is (nearly) behind the light camera's plane through its centre
+// (duelling frusta, light near the view axis); with cmin = min over those points of
+// a . D / |D| (cosine of the angle from the axis), the PSM matrix W is blended with the uniform
+// matrix U as (1 - b) U + b W, b = fade(gamma') * smoothstep(0.05, 0.2, cmin), W scaled so its
+// w averages 1 over B. The blend is a valid map for every b: for a point with w > 0 in both, its
+// position is a convex combination of its positions in U and W (weights 1 - b and b w_W), so B
+// stays inside [0, 1]^3, and rows without a component along L stay so.
+#pragma once
+#include <glm/glm.hpp>
+#include <vector>
+
+#include <sp/scene/scene.h>
+
+namespace sp::tech::warps {
+
+enum class Warp { None, Psm, Lispsm, Tsm };
+
+struct WarpParams {
+  // PSM: extra virtual slide-back beyond the least one, in multiples of B's view-depth range
+  // (z_f - z_n). 0 = the strongest warp; more = weaker (less over-sampling near the viewer);
+  // +inf = uniform.
+  float psmSlideBack = 0.0f;
+  // LiSPSM: n = lispsmScale * n_opt. < 1 warps more, > 1 less, +inf = uniform.
+  float lispsmScale = 1.0f;
+  // TSM: the fraction of the map (v from the top) the focus line maps to (the 80 % rule); 0 =
+  // uniform (as any value at or below the focus line's own fraction).
+  float tsmFocus = 0.8f;
+  // TSM: where the focus line is: view depth z_n + tsmFocusDepth (z_f - z_n) on the camera axis.
+  float tsmFocusDepth = 0.5f;
+};
+
+struct WarpInput {
+  scene::Camera camera;
+  float aspect = 1.0f;
+  glm::vec3 lightDirection{0, -1, 0};  // the way the light travels
+  std::vector<glm::vec3> body;         // world points; B is their convex hull
+  scene::Bounds casters;               // world bounds of what may cast (the scene's bounds)
+};
+
+// B = the slice [d0, d1] of the camera's frustum clipped to `sceneBounds` (the slice itself where
+// they do not meet); casters = sceneBounds.
+WarpInput MakeWarpInput(const scene::Camera& camera, float aspect, const glm::vec3& lightDirection,
+                        const scene::Bounds& sceneBounds, float d0, float d1);
+
+struct WarpFit {
+  Warp warp = Warp::None;
+  glm::mat4 viewProj{1.0f};     // world -> clip, z in [0, 1]; perspective (w != 1) for a warp
+  glm::mat4 lightView{1.0f};    // world -> light view (looking down -z, +y along the view)
+  glm::vec4 linearDepth{0.0f};  // dot(linearDepth, (world, 1)): light-space linear depth in [0, 1] over B and its casters
+  bool preferLinearDepth = false;  // TSM: store linearDepth, as its paper does
+  float gamma = 0.0f;           // angle between view and light direction, degrees (0: light from behind the viewer)
+  bool fellBack = false;        // the result is the uniform map (blend == 0)
+  float blend = 0.0f;           // 0 = uniform, 1 = the full warp
+  float n = 0.0f;               // LiSPSM / TSM: distance of the perspective's eye before B (1/k); +inf when uniform
+  float slideBack = 0.0f;       // PSM: the virtual camera's slide-back, world units
+  glm::vec2 trapezoid[4]{};     // light-view x/y of the map's corners (TSM's trapezoid; a rectangle when uniform): top-left, top-right, bottom-right, bottom-left
+};
+
+WarpFit FitWarp(const WarpInput& input, Warp warp, const WarpParams& params = {});
+
+// World point -> texel coordinates (x right, y down, row 0 at the top) for a map `resolution`
+// texels wide and high, and the depth viewProj gives, after the divide by w.
+glm::vec3 ToTexel(const WarpFit& fit, const glm::vec3& world, float resolution);
+
+// Light-space linear depth (WarpFit::linearDepth) of a world point.
+float LinearDepth(const WarpFit& fit, const glm::vec3& world);
+
+// Texels per world unit at `world` along the world direction `along` (central difference of
+// ToTexel over +-h world units).
+float TexelsPerUnit(const WarpFit& fit, const glm::vec3& world, const glm::vec3& along, float resolution, float h);
+
+}  // namespace sp::tech::warps
