@@ -282,7 +282,7 @@ WarpFit FitWarp(const WarpInput& in, Warp warp, const WarpParams& params) {
         // The 2D map is singular where w(P0) = 0; P0 inside B's footprint has w(P0) >= min w over B.
         double w0 = Apply(w, f.camera + dvec3(f.y) * y0), wmin = kInf;
         for (const dvec3& p : body) wmin = std::min(wmin, Apply(w, p));
-        double b = fade * Smoothstep(0.05, 0.2, cmin) * (wmin > 0 ? Smoothstep(0.1, 0.5, w0 / wmin) : 0.0);
+        double b = fade * Smoothstep(0.05, 0.4, cmin) * (wmin > 0 ? Smoothstep(0.1, 0.5, w0 / wmin) : 0.0);
         dmat4 m;
         if (b > 0.0 && FitRows(f.x, f.y - dvec4(0, 0, 0, y0), w, f.dist, body, casters, &m) && Finite(m)) {
           result = (1.0 - b) * uniform + b * m;

@@ -68,25 +68,33 @@
 //
 // PSM (Stamminger and Drettakis 2002, with Kozlov's fixes, GPU Gems ch. 14). The shadow map is
 // rendered in the post-projective space of a virtual camera: the real one slid back along its
-// axis by s = s_min + psmSlideBack (z_f - z_n), s_min the least that puts B and its casters
-// at least z_n / 2 in front of it (Kozlov's virtual slide-back), with the near plane at the nearest
-// of them and the far plane at infinity (Z-infinity: the light's post-projective image then lies
-// on z = 1, never inside B). The directional light becomes the homogeneous point
-// Lh = PV' (-L, 0) = (l, lw): a point light at l / lw when lw > 0 (light in front of the viewer),
-// a point "beyond infinity" when lw < 0 (light behind: the inverted projection, rays converge
-// behind the scene and depth order along them is reversed), a direction when lw = 0 (light
-// parallel to the view plane). All three are one formula: ray directions D(Q) = lw Q - l, the
-// light camera's axis a = normalize(lw c - l) (c = centre of B's post-projective bounding box),
-// image rows e1 (Q - c), e2 (Q - c) and w row a . D(Q) (e1, e2 perpendicular to a; the image
-// scaled by 1/lw, which the fit removes, so it is smooth through lw = 0). psmSlideBack -> +inf
-// tends to the uniform map; +inf is exactly uniform. Fallback rule: PSM is degenerate when a
-// point of B or its casters is (nearly) behind the light camera's plane through its centre
-// (duelling frusta, light near the view axis); with cmin = min over those points of
-// a . D / |D| (cosine of the angle from the axis), the PSM matrix W is blended with the uniform
-// matrix U as (1 - b) U + b W, b = fade(gamma') * smoothstep(0.05, 0.2, cmin), W scaled so its
-// w averages 1 over B. The blend is a valid map for every b: for a point with w > 0 in both, its
-// position is a convex combination of its positions in U and W (weights 1 - b and b w_W), so B
-// stays inside [0, 1]^3, and rows without a component along L stay so.
+// axis by s = s_min + psmSlideBack (z_f - z_n), s_min the least that puts B and its casters at
+// least z_n / 2 in front of it (Kozlov's virtual slide-back: nothing crosses the camera plane),
+// with the near plane at the nearest of them and the far plane at infinity (Z-infinity: the
+// light's post-projective image then lies on z = 1, never inside B). The directional light
+// becomes the homogeneous point Lh = PV' (-L, 0) = (l, lw): a point light at l / lw when lw > 0
+// (light in front of the viewer), a point "beyond infinity" when lw < 0 (light behind the viewer:
+// Kozlov's inverted projection, the rays converge behind the scene and depth order along them is
+// reversed), a direction when lw = 0 (light parallel to the view plane). One formula covers all
+// three: ray directions D(Q) = lw Q - l for post-projective points Q, the light camera's axis
+// a = normalize(lw c - l) (c = centre of B's post-projective bounding box: the light looks at
+// B), and its homogeneous depth w = a . D(Q), smooth through lw = 0. Pulled back to the world, w
+// has no component along L (a . D(Lh) = 0), so PSM is again a 2D homography of the light view;
+// its image rows are taken as u = X, v = Y - y0 (any two such rows give the same image up to an
+// affine map; these keep the map aligned with the uniform one and are independent of w while
+// w(P0) > 0 at P0 = (X, Y) = (0, y0)). psmSlideBack is Kozlov's near-plane / Z-infinity knob:
+// more slide-back moves the virtual near plane away relative to the far, a milder warp (near/far
+// density (z_f + s)^2 / (z_n + s)^2 on the ground at gamma = 90); +inf is the uniform map. The
+// default 0.3: with the least slide-back the post-projective light sits against B's far face
+// for most lights not perpendicular to the view, and PSM would fall back over most of the sweep.
+// Fallback rule: PSM is degenerate when a point of B or its casters is (nearly) behind the light
+// camera's plane through its centre (duelling frusta, light near the view axis) or the 2D map
+// is near singular. With cmin = min over those points of a . D / |D| (cosine of the angle from
+// the axis) and r = w(P0) / min over B of w, the PSM matrix W is blended with the uniform matrix
+// U as (1 - b) U + b W, b = fade(gamma') * smoothstep(0.05, 0.4, cmin) * smoothstep(0.1, 0.5, r),
+// W scaled so its w averages 1 over B. The blend is a valid map for every b: a point with w > 0
+// in both lands on a convex combination of its positions in U and W (weights 1 - b and b w_W),
+// so B stays inside [0, 1]^3, and rows without a component along L stay so.
 #pragma once
 #include <glm/glm.hpp>
 #include <vector>
@@ -99,9 +107,9 @@ enum class Warp { None, Psm, Lispsm, Tsm };
 
 struct WarpParams {
   // PSM: extra virtual slide-back beyond the least one, in multiples of B's view-depth range
-  // (z_f - z_n). 0 = the strongest warp; more = weaker (less over-sampling near the viewer);
-  // +inf = uniform.
-  float psmSlideBack = 0.0f;
+  // (z_f - z_n). 0 = the strongest warp (and the most fallbacks); more = weaker (less
+  // over-sampling near the viewer); +inf = uniform.
+  float psmSlideBack = 0.3f;
   // LiSPSM: n = lispsmScale * n_opt. < 1 warps more, > 1 less, +inf = uniform.
   float lispsmScale = 1.0f;
   // TSM: the fraction of the map (v from the top) the focus line maps to (the 80 % rule); 0 =

@@ -233,7 +233,9 @@ TEST(WarpDensity, LispsmAtNoptFollowsThePapersPrediction) {
 
 TEST(WarpDensity, PsmOverSamplesTheNearField) {
   Ground g;
-  WarpFit fit = FitWarp(g.in, Warp::Psm);
+  WarpParams least;
+  least.psmSlideBack = 0.0f;
+  WarpFit fit = FitWarp(g.in, Warp::Psm, least);
   EXPECT_FALSE(fit.fellBack);
   EXPECT_NEAR(fit.slideBack, 0.0f, 1e-5f);
   glm::vec2 near = g.Density(fit, 1), far = g.Density(fit, 100);
