@@ -42,8 +42,9 @@ struct Frame {
 Frame MakeFrame(const scene::Camera& cam, const glm::vec3& lightDirection) {
   Frame f;
   f.camera = dvec3(cam.position);
-  f.forward = glm::normalize(dvec3(cam.target) - dvec3(cam.position));
-  dvec3 L = glm::normalize(dvec3(lightDirection));
+  dvec3 fwd = dvec3(cam.target) - dvec3(cam.position), dir(lightDirection);
+  f.forward = glm::length(fwd) > 1e-12 ? glm::normalize(fwd) : dvec3(0, 0, -1);
+  dvec3 L = glm::length(dir) > 1e-12 ? glm::normalize(dir) : dvec3(0, -1, 0);
   f.light = L;
   double c = std::clamp(glm::dot(f.forward, L), -1.0, 1.0);
   f.gamma = std::acos(c);

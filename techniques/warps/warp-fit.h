@@ -60,7 +60,9 @@
 // line, perpendicular to the centre line through the camera axis at view depth
 // z_n + tsmFocusDepth (z_f - z_n), at distance delta from the top, maps to v = tsmFocus (0.8):
 // with v(t) = t (1 + k lambda) / (lambda (1 + k t)), t = Y - y0, v(delta) = xi gives
-//   k = (xi - delta / lambda) / (delta (1 - xi))        (the paper's eta = 1/k, in [0, 1] terms)
+//   k = (xi - delta / lambda) / (delta (1 - xi)),
+// which is 1 / eta for the paper's eta = lambda delta (1 + xi_p) / (lambda - 2 delta - lambda xi_p)
+// written in its [-1, 1] terms, xi_p = 1 - 2 xi (-0.6 for 80 %),
 // clamped at 0 (a focus line already at or beyond xi needs no warp: uniform). Fallback rule: the
 // centre line degenerates as the light turns parallel to the view, so k is multiplied by
 // fade(gamma') = smoothstep(5, 20 degrees, gamma'), gamma' = min(gamma, 180 - gamma).

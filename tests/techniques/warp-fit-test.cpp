@@ -74,6 +74,8 @@ void ExpectContained(const WarpInput& in, const WarpFit& fit, const std::string&
   const float R = 1024.0f, eps = 1e-3f;
   ASSERT_TRUE(AllFinite(fit.viewProj)) << what;
   ASSERT_TRUE(std::isfinite(fit.gamma) && std::isfinite(fit.blend)) << what;
+  for (int i = 0; i < 4; ++i) ASSERT_TRUE(std::isfinite(fit.linearDepth[i])) << what;
+  for (const glm::vec2& c : fit.trapezoid) ASSERT_TRUE(std::isfinite(c.x) && std::isfinite(c.y)) << what;
   glm::vec3 L = glm::normalize(in.lightDirection);
   for (const glm::vec3& b : in.body) {
     glm::vec4 clip = fit.viewProj * glm::vec4(b, 1.0f);
@@ -214,6 +216,9 @@ TEST(WarpDensity, LispsmAtNoptFollowsThePapersPrediction) {
   EXPECT_FALSE(fit.fellBack);
   EXPECT_NEAR(fit.blend, 1.0f, 1e-6f);
   EXPECT_NEAR(fit.n, 1.0f + std::sqrt(100.0f), 1e-3f);  // z_n + sqrt(z_n z_f)
+  // A perspective map: w grows along the warp axis, 1 + d / n times from near to far.
+  glm::vec4 wn = fit.viewProj * glm::vec4(0, 0, -1, 1), wf = fit.viewProj * glm::vec4(0, 0, -100, 1);
+  EXPECT_NEAR(wf.w / wn.w, 1.0f + 99.0f / fit.n, 1e-3f);
   glm::vec2 near = g.Density(fit, 1), far = g.Density(fit, 100);
   EXPECT_NEAR((near.y / far.y) / 100.0f, 1.0f, 0.02f) << near.y << " " << far.y;
   EXPECT_NEAR((near.x / far.x) / 10.0f, 1.0f, 0.02f) << near.x << " " << far.x;
@@ -251,8 +256,8 @@ TEST(WarpDensity, PsmOverSamplesTheNearField) {
 }
 
 // The trapezoid's definition: the focus line (view depth z_n + 0.5 (z_f - z_n) on the axis) at
-// v = 0.8, the top line (B's near side) at v = 0, the base at v = 1; the trapezoid is narrower at
-// the top, and B's points map inside it.
+// v = 0.8, the top line (B's near side) at v = 0, the base at v = 1; the apex distance is the
+// paper's eta; the trapezoid is narrower at the top and its sides meet at the apex.
 TEST(WarpTsm, FocusLineMapsToEightyPercentOfTheMap) {
   Ground g;
   for (float focus : {0.8f, 0.9f, 0.7f}) {
@@ -265,9 +270,20 @@ TEST(WarpTsm, FocusLineMapsToEightyPercentOfTheMap) {
     EXPECT_NEAR(ToTexel(fit, glm::vec3(0, 2, -zFocus), 1).y, focus, 1e-3f);
     EXPECT_NEAR(ToTexel(fit, glm::vec3(0, 0, -1), 1).y, 0.0f, 1e-3f);
     EXPECT_NEAR(ToTexel(fit, glm::vec3(0, 0, -100), 1).y, 1.0f, 1e-3f);
-    // Light-view x/y: +y along the view; top edge (near) shorter than the base.
+    // eta from the paper's formula, in its [-1, 1] terms: xi_p = 1 - 2 focus, lambda = 99,
+    // delta' = 49.5 (focus line at view depth 50.5, top line at 1).
+    double lambda = 99.0, delta = 49.5, xp = 1.0 - 2.0 * focus;
+    double eta = lambda * delta * (1.0 + xp) / (lambda - 2.0 * delta - lambda * xp);
+    EXPECT_NEAR(fit.n / eta, 1.0, 1e-4) << focus;
+    // Light-view x/y: +y along the view; top edge (near) shorter than the base, and the sides
+    // meet at the apex q on the centre line (x = 0), eta before the top line.
     float top = glm::distance(fit.trapezoid[0], fit.trapezoid[1]), base = glm::distance(fit.trapezoid[3], fit.trapezoid[2]);
     EXPECT_LT(top, base * 0.9f);
+    glm::vec2 a = fit.trapezoid[0], da = fit.trapezoid[3] - a, b = fit.trapezoid[1], db = fit.trapezoid[2] - b;
+    float t = ((b.x - a.x) * db.y - (b.y - a.y) * db.x) / (da.x * db.y - da.y * db.x);
+    glm::vec2 q = a + da * t;
+    EXPECT_NEAR(q.x, 0.0f, 1e-3f * float(eta));
+    EXPECT_NEAR(q.y, 1.0f - float(eta), 2e-3f * float(eta));
     // Top line at B's near side (y = z_n), base at its far side; the fit's slack of 1e-4 of the
     // map is stretched by the warp towards the base.
     EXPECT_NEAR(fit.trapezoid[0].y, 1.0f, 0.05f);
