@@ -5,20 +5,22 @@
 //
 // Spaces and conventions
 //   World -> light view: right-handed, looking down -z along the light's travel direction L (as
-//   csm's SharedLightView), with its y axis the view direction's component perpendicular to L
-//   (the "warp axis"; the camera's up vector where the view is parallel to L). In light view the
-//   viewer looks towards +y; X is a light-view x, Y a light-view y.
+//   csm's SharedLightView), but with its origin at the camera and its y axis the view direction's
+//   component perpendicular to L (the "warp axis"; the camera's up vector where the view is
+//   parallel to L). In light view the viewer sits at the origin and looks towards +y; X is a
+//   light-view x, Y a light-view y.
 //   Clip: D3D11, x and y in [-1, 1] after the divide, z in [0, 1]; texture row 0 at the top. The
 //   near side of the body (small Y, where the camera is) is mapped to the top rows.
 //   The body of interest B: the view-frustum slice [d0, d1] clipped to the scene bounds (csm's
 //   SliceCorners / SliceBoxIntersection, see MakeWarpInput). The casters that matter: the part of
 //   the caster bounds inside B's light-view x/y box, extruded towards the light.
 //
-// One structure for every warp. A shadow map of a directional light whose matrix is a 4x4 sends
-// every light ray to one texel, so its x, y and w rows have no component along L: they are a 2D
-// homography H of the light-view plane (X, Y). The warps differ only in H:
+// Everything is computed in double and rounded to float once, in the result. One structure for
+// every warp: a shadow map of a directional light whose matrix is a 4x4 sends every light ray to
+// one texel, so its x, y and w rows have no component along L: they are a 2D homography H of the
+// light-view plane (X, Y). The warps differ only in H:
 //   none    H = identity (orthographic)                         u = X, v = Y, w = 1
-//   LiSPSM  perspective along the warp axis, centre n before B   u = X - ex, v = Y - y0, w = 1 + k (Y - y0)
+//   LiSPSM  perspective along the warp axis, centre n before B   u = X, v = Y - y0, w = 1 + k (Y - y0)
 //   TSM     the same family, k from the trapezoid's focus line  (the 2DH maps its trapezoid to the square)
 //   PSM     H induced by the camera's post-projective space, see below
 // followed by the same fit (FitRows): the bounding rectangle of u/w, v/w over B maps to [-1, 1]
@@ -28,11 +30,11 @@
 // is the light-space linear alternative (its own row, not divided by w: the TSM paper handles z
 // separately, the shader writes linearDepth * w to clip z, or stores it in an R32 target).
 // Casters between B and the light land in [0, 1] (the near plane is at the nearest of them);
-// anything nearer the light outside that region lands in front of the near plane (z < 0, clamped
-// by the rasterizer: pancaking, as csm does).
+// anything else nearer the light than that lands in front of the near plane (z < 0: clamped by
+// depth clamping, pancaked, as in csm).
 //
 // LiSPSM (Wimmer, Scherzer, Purgathofer 2004). The perspective P has its eye on the line through
-// the camera parallel to the warp axis, at distance n before B's near side y0 = min Y over B; with
+// the camera (X = 0) parallel to the warp axis, at distance n before B's near side y0 = min Y over B; with
 // k = 1/n, w = 1 + k (Y - y0) is P's homogeneous w (Y - y0 + n) divided by n, so k = 0 is exactly
 // the uniform map. The paper's optimum n_opt = (z_n + sqrt(z_n z_f)) / sin(gamma) is written in
 // view depths; it comes from equalising the perspective error y^2 / z at both ends of B when view
@@ -137,15 +139,19 @@ WarpInput MakeWarpInput(const scene::Camera& camera, float aspect, const glm::ve
 struct WarpFit {
   Warp warp = Warp::None;
   glm::mat4 viewProj{1.0f};     // world -> clip, z in [0, 1]; perspective (w != 1) for a warp
-  glm::mat4 lightView{1.0f};    // world -> light view (looking down -z, +y along the view)
+  glm::mat4 lightView{1.0f};    // world -> light view (origin at the camera, looking down -z, +y along the view)
   glm::vec4 linearDepth{0.0f};  // dot(linearDepth, (world, 1)): light-space linear depth in [0, 1] over B and its casters
   bool preferLinearDepth = false;  // TSM: store linearDepth, as its paper does
   float gamma = 0.0f;           // angle between view and light direction, degrees (0: light from behind the viewer)
   bool fellBack = false;        // the result is the uniform map (blend == 0)
-  float blend = 0.0f;           // 0 = uniform, 1 = the full warp
+  // 0 = uniform, 1 = the full warp: PSM's b, TSM's fade(gamma'), LiSPSM's sin(gamma) (its warp
+  // strength 1/n relative to the same body lit at 90 degrees).
+  float blend = 0.0f;
   float n = 0.0f;               // LiSPSM / TSM: distance of the perspective's eye before B (1/k); +inf when uniform
   float slideBack = 0.0f;       // PSM: the virtual camera's slide-back, world units
-  glm::vec2 trapezoid[4]{};     // light-view x/y of the map's corners (TSM's trapezoid; a rectangle when uniform): top-left, top-right, bottom-right, bottom-left
+  // Light-view x/y of the map's corners (TSM's trapezoid; a rectangle when uniform): top-left,
+  // top-right, bottom-right, bottom-left (top = row 0 = B's near side).
+  glm::vec2 trapezoid[4]{};
 };
 
 WarpFit FitWarp(const WarpInput& input, Warp warp, const WarpParams& params = {});
