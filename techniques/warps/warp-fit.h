@@ -34,8 +34,8 @@
 // depth clamping, pancaked, as in csm).
 //
 // LiSPSM (Wimmer, Scherzer, Purgathofer 2004). The perspective P has its eye on the line through
-// the camera (X = 0) parallel to the warp axis, at distance n before B's near side y0 = min Y over B; with
-// k = 1/n, w = 1 + k (Y - y0) is P's homogeneous w (Y - y0 + n) divided by n, so k = 0 is exactly
+// the camera (X = 0) parallel to the warp axis, at distance n before B's near side y0 = min Y
+// over B; with k = 1/n, w = 1 + k (Y - y0) is P's homogeneous w (Y - y0 + n) divided by n, so k = 0 is exactly
 // the uniform map. The paper's optimum n_opt = (z_n + sqrt(z_n z_f)) / sin(gamma) is written in
 // view depths; it comes from equalising the perspective error y^2 / z at both ends of B when view
 // depth z grows linearly along the warp axis (y = n + (z - z_n) d / (z_f - z_n)): that gives
@@ -47,8 +47,9 @@
 // light turns parallel to the view. n = lispsmScale * n_opt. Fallback rule: k = sin(gamma) /
 // (lispsmScale * ...) goes to 0 continuously as gamma -> 0 or 180 degrees, so the map tends to the
 // uniform one with no threshold and no pop; k = 0 exactly at gamma = 0, 180, for a flat body or
-// lispsmScale = +inf. At k = 1/n_opt and gamma = 90 the texel density along the view falls as
-// 1/z (near/far = z_f / z_n along v, sqrt(z_f / z_n) along u): the paper's prediction.
+// lispsmScale = +inf. At k = 1/n_opt and gamma = 90 the texel density along the view is
+// z_f / z_n times higher at B's near end than at its far end (sqrt(z_f / z_n) across it), the
+// ratio of the screen's own densities: equal perspective error at both ends, the paper's point.
 //
 // TSM (Martin and Tan 2004). In the light's post-perspective space (for a directional light the
 // orthographic light view), B projects to a 2D point set; the centre line is the projection of the
