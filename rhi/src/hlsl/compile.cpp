@@ -428,11 +428,12 @@ std::vector<uint32_t> StripHlslDecorations(const std::vector<uint32_t>& in, cons
 
 // `beforeLegalization`: glslang's raw output, which may still keep resources in locals and the
 // like (spirv-val's --before-hlsl-legalization). spirv-opt assumes valid input and can crash on
-// what glslang sometimes emits, so its input is checked too.
+// what glslang sometimes emits, so its input is checked too, against SPIR-V's core rules only:
+// Vulkan's rules (image formats for atomics, ...) are met by the edits after legalisation.
 void Validate(const std::vector<uint32_t>& spirv, const std::string& fileName, const std::string& name,
               bool beforeLegalization = false) {
   ToolMessages log;
-  spvtools::SpirvTools tools(SPV_ENV_VULKAN_1_1);
+  spvtools::SpirvTools tools(beforeLegalization ? SPV_ENV_UNIVERSAL_1_3 : SPV_ENV_VULKAN_1_1);
   tools.SetMessageConsumer([&log](spv_message_level_t l, const char* s, const spv_position_t& p, const char* m) { log(l, s, p, m); });
   spvtools::ValidatorOptions vo;
   vo.SetBeforeHlslLegalization(beforeLegalization);
