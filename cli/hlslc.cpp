@@ -1,6 +1,7 @@
 // `shadowport hlslc`: fxc-style front end to the HLSL toolchain, for checking what of an existing
 // D3D11 shader ports:  shadowport hlslc shadow.hlsl /T ps_4_0 /E PSMain /D PCF=1 /I inc /Zpr /Fo out
 // Options take fxc's spellings with '-' or '/'; values follow attached (-Tps_5_0) or separately.
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -8,6 +9,7 @@
 #include <stdexcept>
 
 #include "cli.h"
+#include "hlslc-survey.h"
 
 namespace sp::cli {
 namespace {
@@ -57,6 +59,7 @@ void Usage() {
                "with -P out.hlsl, writes instead what glslang parses: the preprocessed source after the D3D11\n"
                "compatibility rewrites (-T optional), and names the rewrites that changed it\n",
                hlsl::ValidTargets(), ValidOptions().c_str());
+  std::fputs(kSurveyUsage, stderr);
 }
 
 struct Command {
@@ -145,6 +148,7 @@ int WritePreprocessed(Command& c) {
 }  // namespace
 
 int RunHlslc(const std::vector<std::string>& argv) {
+  if (std::find(argv.begin(), argv.end(), "--survey") != argv.end()) return RunHlslcSurvey(argv);
   Command c = Parse(argv);
   if (c.help) {
     Usage();
