@@ -32,7 +32,8 @@ const char kSurveyUsage[] =
     "  compiles every entry point under DIR and writes a markdown report (summary, failures grouped by\n"
     "  cause, a per-file table, the compatibility rewrites used); prints a one-line summary; exits 0\n"
     "  when the survey ran, failures included. Entry points are found in .hlsl .hlsli .fx .fxh .vsh .psh\n"
-    "  .cs files: [numthreads] -> cs_5_0, [maxvertexcount] -> gs_5_0, a return semantic SV_Target*,\n"
+    "  .cs files: [numthreads] -> cs_5_0, [maxvertexcount] -> gs_5_0, [patchconstantfunc] -> hs_5_0 and\n"
+    "  [domain] -> ds_5_0 (which fail: tessellation is not supported), a return semantic SV_Target*,\n"
     "  SV_Depth* or COLOR* (or a returned struct with SV_Target members) -> ps_5_0, SV_Position returned,\n"
     "  in a returned struct or as an out parameter -> vs_5_0; functions other functions call are not\n"
     "  entry points; in effect files, CompileShader(target, Entry()) names them. -D and -I apply to all.\n"
@@ -245,6 +246,13 @@ std::string Classify(const Function& f, const std::function<const std::vector<st
     if (u == "NUMTHREADS") return "cs_5_0";
     if (u == "MAXVERTEXCOUNT") return "gs_5_0";
   }
+  // Tessellation is not supported; listing hull and domain shaders (which then fail on their
+  // target) says so in the report instead of calling their files include-only.
+  auto hasAttribute = [&](const char* name) {
+    return std::any_of(f.attributes.begin(), f.attributes.end(), [&](const std::string& a) { return Upper(a) == name; });
+  };
+  if (hasAttribute("PATCHCONSTANTFUNC") || hasAttribute("OUTPUTCONTROLPOINTS")) return "hs_5_0";
+  if (hasAttribute("DOMAIN")) return "ds_5_0";
   auto has = [&](const std::string& type, auto pred) {
     const std::vector<std::string>* sems = structs(type);
     return sems && std::any_of(sems->begin(), sems->end(), pred);
