@@ -5,8 +5,6 @@
 // Entry points are found from signatures, not by compiling, because a tree has no list of them:
 // the build that knows them is the thing being ported. The rules are deliberately simple (see
 // Classify) and the manifest is the escape hatch for whatever they get wrong.
-#include "hlslc-survey.h"
-
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
@@ -19,6 +17,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "cli.h"
 #include "hlsl/compat/compat.h"
 #include "hlsl/compat/source-tokens.h"
 

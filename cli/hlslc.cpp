@@ -9,7 +9,6 @@
 #include <stdexcept>
 
 #include "cli.h"
-#include "hlslc-survey.h"
 
 namespace sp::cli {
 namespace {
@@ -148,7 +147,7 @@ int WritePreprocessed(Command& c) {
 }  // namespace
 
 int RunHlslc(const std::vector<std::string>& argv) {
-  if (std::find(argv.begin(), argv.end(), "--survey") != argv.end()) return RunHlslcSurvey(argv);
+  if (std::find(argv.begin(), argv.end(), "--survey") != argv.end()) return RunHlslcSurvey(argv);  // cli/hlslc-survey.cpp
   Command c = Parse(argv);
   if (c.help) {
     Usage();
