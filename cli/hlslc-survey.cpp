@@ -54,6 +54,9 @@ struct Entry {
   std::string name, target;
   int line = 0;                      // where it was found (0: from the manifest)
   std::vector<hlsl::Define> defines;  // the manifest's, after the command line's
+  // An effect technique's call when it passes uniform arguments ("PS(true)"): the function
+  // compiled on its own takes them as shader inputs, which the report explains.
+  std::string uniformCall;
 };
 
 struct Outcome {
@@ -136,8 +139,7 @@ struct Function {
 struct FileScan {
   std::map<std::string, std::vector<std::string>> structSemantics;  // upper case
   std::vector<Function> functions;
-  std::vector<std::pair<std::string, std::string>> compileShaders;  // (entry, target), effect files
-  std::vector<int> compileShaderLines;
+  std::vector<Entry> compileShaders;  // effect files' CompileShader(target, Entry(...)), file unset
   std::set<std::string> called;
 };
 
@@ -177,8 +179,10 @@ FileScan Scan(const std::string& text, const std::string& file) {
     if (args.size() < 2 || args[0].first >= args[0].second) continue;
     for (size_t j = args[1].first; j < args[1].second; ++j)
       if (s[j].IsIdentifier()) {
-        scan.compileShaders.push_back({s[j].text, s[args[0].first].text});
-        scan.compileShaderLines.push_back(s[i].line);
+        Entry e{"", s[j].text, s[args[0].first].text, s[i].line, {}, ""};
+        size_t open = j + 1;
+        if (s.Is(open, "(") && s.Matching(open) > open + 1 && s.Matching(open) < s.size()) e.uniformCall = s.Text(j, s.Matching(open) + 1);
+        scan.compileShaders.push_back(std::move(e));
         break;
       }
   }
@@ -298,9 +302,9 @@ std::vector<Entry> FindEntries(const fs::path& dir, std::vector<std::string>* in
   for (const auto& [rel, scan] : scans) {
     std::set<std::pair<std::string, std::string>> seen;  // a function in both branches of an #if is one entry
     size_t before = entries.size();
-    for (size_t k = 0; k < scan.compileShaders.size(); ++k) {
-      const auto& [name, target] = scan.compileShaders[k];
-      if (seen.insert({name, target}).second) entries.push_back({rel, name, target, scan.compileShaderLines[k], {}});
+    for (Entry e : scan.compileShaders) {
+      e.file = rel;
+      if (seen.insert({e.name, e.target}).second) entries.push_back(std::move(e));
     }
     if (entries.size() == before) {
       auto structs = [&](const std::string& type) -> const std::vector<std::string>* {
@@ -312,7 +316,7 @@ std::vector<Entry> FindEntries(const fs::path& dir, std::vector<std::string>* in
       for (const Function& f : scan.functions) {
         if (called.count(f.name)) continue;  // a helper with semantics, called by the real entry
         std::string target = Classify(f, structs);
-        if (!target.empty() && seen.insert({f.name, target}).second) entries.push_back({rel, f.name, target, f.line, {}});
+        if (!target.empty() && seen.insert({f.name, target}).second) entries.push_back({rel, f.name, target, f.line, {}, ""});
       }
     }
     if (entries.size() == before) includeOnly->push_back(rel);
@@ -334,7 +338,7 @@ std::vector<Entry> ReadManifest(const fs::path& manifest, const fs::path& dir) {
     if (w.empty()) continue;
     std::string where = manifest.string() + ":" + std::to_string(n) + ": ";
     if (w.size() < 3) throw std::invalid_argument(where + "expected 'file entry target [-D NAME[=VALUE]]...'");
-    Entry e{w[0], w[1], w[2], 0, {}};
+    Entry e{w[0], w[1], w[2], 0, {}, ""};
     for (size_t i = 3; i < w.size(); ++i) {
       if (w[i].rfind("-D", 0) != 0) throw std::invalid_argument(where + "unexpected '" + w[i] + "' (only -D NAME[=VALUE] may follow the target)");
       if (w[i] == "-D" && i + 1 >= w.size()) throw std::invalid_argument(where + "-D needs a value");
@@ -415,6 +419,11 @@ std::string Normalize(const std::string& message) {
         continue;
       }
     }
+    if (c == '%' && i + 1 < m.size() && (std::isalnum(static_cast<unsigned char>(m[i + 1])) || m[i + 1] == '_')) {
+      while (i + 1 < m.size() && (std::isalnum(static_cast<unsigned char>(m[i + 1])) || m[i + 1] == '_')) ++i;
+      out += "%...";  // spirv-val names the shader's own variables
+      continue;
+    }
     bool wordStart = i == 0 || !(std::isalnum(static_cast<unsigned char>(m[i - 1])) || m[i - 1] == '_');
     // Unquoted file names ("... header name: sdsm/analysis.hlsli") differ per file, not per cause.
     if (wordStart && !std::isspace(static_cast<unsigned char>(c))) {
@@ -490,6 +499,10 @@ bool IsEffectSyntax(const std::string& where, const fs::path& dir) {
 const char kEffectHint[] =
     "effect-file syntax (technique/pass blocks, state objects): the effect-blocks rewrite makes these compile; until "
     "it does, effect files fail here";
+
+const char kUniformCallHint[] =
+    "the technique passes uniform arguments (see the Entry column): compiled on its own, the function takes them as "
+    "shader inputs, which fails or means something else; an effect compiles such a pass with the arguments bound";
 
 // Markdown table cells: no pipes, no newlines.
 std::string Cell(const std::string& s) {
@@ -573,8 +586,8 @@ int RunHlslcSurvey(const std::vector<std::string>& argv) {
     const Entry& e = entries[c.example];
     const Outcome& r = outcomes[c.example];
     md << "### " << c.count << " x `" << c.text << "`\n\n";
-    md << "- Example: `" << r.where << ": " << r.message << "` (" << e.file << ", " << e.name << ", " << e.target << ")\n";
-    const char* hint = Hint(c.text);
+    md << "- Example: `" << Cell(r.where + ": " + r.message) << "` (" << e.file << ", " << e.name << ", " << e.target << ")\n";
+    const char* hint = e.uniformCall.empty() ? Hint(c.text) : kUniformCallHint;
     if (!hint && IsEffectSyntax(r.where, o.dir)) hint = kEffectHint;
     if (hint) md << "- Hint: " << hint << "\n";
     md << "\n";
@@ -592,13 +605,11 @@ int RunHlslcSurvey(const std::vector<std::string>& argv) {
   }
 
   md << "## Per file\n\n| File | Entry | Target | Result |\n|---|---|---|---|\n";
-  std::vector<size_t> order(entries.size());
-  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
-  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return entries[a].file < entries[b].file; });
-  for (size_t i : order) {
+  std::vector<std::pair<std::string, std::string>> rows;  // (file, row), include-only files in their place
+  for (size_t i = 0; i < entries.size(); ++i) {
     const Entry& e = entries[i];
     const Outcome& r = outcomes[i];
-    std::string name = e.name;
+    std::string name = e.uniformCall.empty() ? e.name : e.name + " (technique: " + e.uniformCall + ")";
     for (const hlsl::Define& d : e.defines) name += " -D" + d.name + (d.value.empty() ? "" : "=" + d.value);
     std::string result;
     if (r.ok) {
@@ -611,10 +622,12 @@ int RunHlslcSurvey(const std::vector<std::string>& argv) {
     } else {
       result = "**failed**: " + r.where + ": " + r.message;
     }
-    md << "| " << Cell(e.file + (e.line ? ":" + std::to_string(e.line) : "")) << " | " << Cell(name) << " | " << e.target << " | "
-       << Cell(result) << " |\n";
+    rows.push_back({e.file, "| " + Cell(e.file + (e.line ? ":" + std::to_string(e.line) : "")) + " | " + Cell(name) + " | " + e.target +
+                                " | " + Cell(result) + " |\n"});
   }
-  for (const std::string& f : includeOnly) md << "| " << Cell(f) << " | - | - | include-only (no entry point found) |\n";
+  for (const std::string& f : includeOnly) rows.push_back({f, "| " + Cell(f) + " | - | - | include-only (no entry point found) |\n"});
+  std::stable_sort(rows.begin(), rows.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (const auto& row : rows) md << row.second;
 
   std::ofstream out(o.out, std::ios::binary);
   if (!(out << md.str())) throw std::runtime_error(o.out.string() + ": cannot write the report");
