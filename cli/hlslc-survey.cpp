@@ -101,6 +101,8 @@ Options Parse(const std::vector<std::string>& argv) {
     else if (a == "-Zpc" || a == "/Zpc") o.compile.flags1 |= hlsl::COMPILE_PACK_MATRIX_COLUMN_MAJOR;
     else if (a.rfind("-D", 0) == 0 || a.rfind("/D", 0) == 0) o.compile.defines.push_back(ParseDefine(value(a.substr(0, 2))));
     else if (a.rfind("-I", 0) == 0 || a.rfind("/I", 0) == 0) o.compile.includeDirs.push_back(value(a.substr(0, 2)));
+    else if (a.empty() || (a[0] != '-' && a[0] != '/'))
+      throw std::invalid_argument("unexpected argument '" + a + "' (the folder to survey follows --survey; see hlslc --survey --help)");
     else throw std::invalid_argument("unknown option for --survey: " + a + " (valid: --survey DIR, -D, -I, --manifest, -Zpr, -Zpc, --no-cache, --out, --help)");
   }
   if (o.help) return o;
@@ -549,7 +551,8 @@ int RunHlslcSurvey(const std::vector<std::string>& argv) {
   std::vector<Entry> entries = o.manifest.empty() ? FindEntries(o.dir, &includeOnly) : ReadManifest(o.manifest, o.dir);
   std::vector<Outcome> outcomes;
   for (const Entry& e : entries) {
-    std::fprintf(stderr, "survey: %s %s %s\n", e.file.c_str(), e.name.c_str(), e.target.c_str());
+    // A large tree takes a while: say how far it got.
+    std::fprintf(stderr, "survey [%zu/%zu] %s %s %s\n", outcomes.size() + 1, entries.size(), e.file.c_str(), e.name.c_str(), e.target.c_str());
     outcomes.push_back(CompileEntry(e, o));
   }
 
