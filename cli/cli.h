@@ -55,4 +55,10 @@ int RunConformance(const Args& args);
 int RunBench(const Args& args);
 int RunReport(const Args& args);
 
+// hlslc --survey DIR (cli/hlslc-survey.cpp): compiles every entry point of a shader tree and
+// writes a markdown report. Returns 0 when the survey ran, failures included; throws
+// std::invalid_argument for bad usage.
+int RunHlslcSurvey(const std::vector<std::string>& argv);
+extern const char kSurveyUsage[];  // its lines in `hlslc --help`
+
 }  // namespace sp::cli

@@ -58,6 +58,7 @@ void Usage() {
                "with -P out.hlsl, writes instead what glslang parses: the preprocessed source after the D3D11\n"
                "compatibility rewrites (-T optional), and names the rewrites that changed it\n",
                hlsl::ValidTargets(), ValidOptions().c_str());
+  std::fputs(kSurveyUsage, stderr);
 }
 
 struct Command {
@@ -147,6 +148,7 @@ int WritePreprocessed(Command& c) {
 
 int RunHlslc(const std::vector<std::string>& argv) {
   if (std::find(argv.begin(), argv.end(), "--fx") != argv.end()) return RunHlslcFx(argv);  // cli/hlslc-fx.cpp
+  if (std::find(argv.begin(), argv.end(), "--survey") != argv.end()) return RunHlslcSurvey(argv);  // cli/hlslc-survey.cpp
   Command c = Parse(argv);
   if (c.help) {
     Usage();

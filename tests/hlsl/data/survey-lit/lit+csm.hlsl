@@ -1,0 +1,5 @@
+// The lit pass as techniques/renderer.cpp (Renderer::CompileLitShaders) compiles it for the csm
+// technique: its lighting include first (it defines ShadowVisibility), then lit.hlsl; both are
+// found through -I shaders-hlsl. On disk so that hlslc --survey can compile it from a manifest.
+#include "csm/shadow.hlsli"
+#include "lit.hlsl"
