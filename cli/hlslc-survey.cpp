@@ -499,8 +499,9 @@ bool IsEffectSyntax(const std::string& where, const fs::path& dir) {
 }
 
 const char kEffectHint[] =
-    "effect-file syntax (technique/pass blocks, state objects): the effect-blocks rewrite makes these compile; until "
-    "it does, effect files fail here";
+    "effect-file syntax (technique/pass blocks, state objects) outside what the effect-blocks rewrite reads: a fragment "
+    "of a block (an .fxh included inside a pass) is not a shader on its own; other cases: `hlslc --fx FILE` names the "
+    "construct";
 
 const char kUniformCallHint[] =
     "the technique passes uniform arguments (see the Entry column): compiled on its own, the function takes them as "
