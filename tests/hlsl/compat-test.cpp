@@ -137,6 +137,20 @@ TEST(D3D11Compat, IncludesWithBackslashesAndAnotherCaseFindTheFile) {
   EXPECT_TRUE(Contains(d.message, "shared\\Missing.hlsli")) << d.message;
 }
 
+// `#pragma once` includes a file once, as fxc does (glslang's preprocessor ignores it).
+TEST(D3D11Compat, PragmaOnceIncludesAFileOnce) {
+  std::filesystem::path dir = TestOutputDir() / "pragma-once";
+  std::filesystem::create_directories(dir);
+  {
+    std::ofstream(dir / "once.hlsli") << "#pragma once\nfloat Twice(float x) { return 2 * x; }\n";
+  }
+  std::string src = "#include \"once.hlsli\"\n#include \"once.hlsli\"\nRWStructuredBuffer<float> o : register(u0);\n"
+                    "[numthreads(1, 1, 1)] void main() { o[0] = Twice(1); }\n";
+  hlsl::CompileOptions strict = Options();
+  strict.flags1 = hlsl::COMPILE_WARNINGS_ARE_ERRORS;  // no "not implemented" warning either
+  EXPECT_NO_THROW(hlsl::CompileSource(src, (dir / "main.hlsl").string(), strict));
+}
+
 // glslang's recursive parser would overflow its stack; the pass stops first, with the line.
 TEST(D3D11Compat, DeepNestingIsAnErrorNotACrash) {
   hlsl::Diagnostic d = FirstError("[numthreads(1, 1, 1)] void main() {\n  float x = " + std::string(10000, '(') + "1" +

@@ -185,12 +185,18 @@ class Includer : public glslang::TShader::Includer {
       return nullptr;
     }
     std::string name = p.lexically_normal().string();
-    deps_.push_back({fs::absolute(p).lexically_normal().string(), Hash64(content->data(), content->size())});
+    std::string absolute = fs::absolute(p).lexically_normal().string();
+    deps_.push_back({absolute, Hash64(content->data(), content->size())});
+    // fxc honours `#pragma once`; glslang's preprocessor passes it through and includes the file
+    // again ("function already has a body"). A second include of such a file is empty.
+    static const std::regex once(R"((^|\n)[ \t]*#[ \t]*pragma[ \t]+once\b)");
+    if (std::regex_search(*content, once) && !onceFiles_.insert(absolute).second) content->clear();
     return new IncludeResult(name, content->data(), content->size(), content);
   }
   fs::path mainDir_;
   std::vector<fs::path> dirs_;
   std::vector<Dependency> deps_;
+  std::set<std::string> onceFiles_;
 };
 
 // "ERROR: path/file.hlsl:12: 'x' : undeclared identifier" -> {path/file.hlsl, 12, ...}
@@ -230,7 +236,8 @@ std::vector<Diagnostic> ParseGlslangWarnings(const std::string& log, const std::
     else if (std::regex_match(line, m, noLine)) d = {defaultFile, 0, m[1].str()};
     else continue;
     if (d.message.find("attribute does not apply to a loop") != std::string::npos ||
-        d.message.find("attribute does not apply to a switch") != std::string::npos)
+        d.message.find("attribute does not apply to a switch") != std::string::npos ||
+        d.message.find("'#pragma once' : not implemented") != std::string::npos)  // the Includer implements it
       continue;
     out.push_back(std::move(d));
   }
