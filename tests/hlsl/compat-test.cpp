@@ -310,6 +310,24 @@ RWStructuredBuffer<float4> o : register(u0);
   ExpectRows(Run(src, cb, 6), expect);
 }
 
+// `uint coverage : SV_Coverage` as an entry parameter (glslang alone leaves it unconnected): a
+// pixel fully covered by the triangle in a single-sampled target has coverage 1.
+TEST_P(D3D11CompatRun, CoverageParameterReadsTheSampleMask) {
+  const char* vs = "float4 main(uint id : SV_VertexID) : SV_Position { return float4(id == 2 ? 3.0 : -1.0, id == 1 ? 3.0 : -1.0, 0, 1); }";
+  const char* ps = "uint main(float4 pos : SV_Position, uint coverage : SV_Coverage) : SV_Target { return coverage + 10; }";
+  Ref<VertexShader> v = device().CreateVertexShader(CompileHlsl(vs, "vs_5_0", "main"));
+  Ref<PixelShader> p = device().CreatePixelShader(CompileHlsl(ps, "ps_5_0", "main"));
+  Target rt = MakeTarget(device(), 4, 4, FORMAT_R32_UINT);
+  RenderTargetView* rtvs[] = {rt.rtv.get()};
+  ctx().OMSetRenderTargets(1, rtvs, nullptr);
+  SetViewport(ctx(), 4, 4);
+  ctx().IASetPrimitiveTopology(PRIMITIVE_TOPOLOGY_TRIANGLELIST);
+  ctx().VSSetShader(v.get());
+  ctx().PSSetShader(p.get());
+  ctx().Draw(3, 0);
+  for (uint32_t value : ReadTextureAs<uint32_t>(device(), ctx(), rt.texture.get())) EXPECT_EQ(value, 11u);
+}
+
 // A Texture2DArray at t1 read in one pixel shader through a plain and a comparison sampler (a
 // moment-map permutation and a PCF permutation in one): two SPIR-V variables at one register.
 TEST_P(D3D11CompatRun, TextureArrayReadThroughAPlainAndAComparisonSampler) {

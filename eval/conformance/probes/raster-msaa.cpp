@@ -27,8 +27,8 @@ RWStructuredBuffer<float4> output : register(u0);
 
 const char* kShaders = R"(
 float4 PSCount(float4 p : SV_Position) : SV_Target { return float4(1, 0, 0, 0); }
-// SV_Coverage in an input struct: glslang 12 does not connect a scalar SV_Coverage parameter, which
-// the toolchain therefore rejects.
+// SV_Coverage in an input struct (a scalar parameter works too: the toolchain rewrites it into one,
+// since glslang 12 does not connect it).
 struct CoverageIn { float4 p : SV_Position; uint coverage : SV_Coverage; };
 float4 PSCoverage(CoverageIn i) : SV_Target { return float4(i.coverage, 0, 0, 0); }
 float4 PSSampleIndex(float4 p : SV_Position, uint s : SV_SampleIndex) : SV_Target { return float4(s + 1, 0, 0, 0); }

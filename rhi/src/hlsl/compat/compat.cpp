@@ -12,6 +12,7 @@ const std::vector<Rewrite>& Rewrites() {
       {"initializer-list", "brace-elided and flat initializer lists for structs, vectors and arrays", RewriteInitializerLists},
       {"matrix-swizzle", "matrix swizzles (m._11_21_31, m._m00_m10), read and written", RewriteMatrixSwizzles},
       {"uniform-parameter", "`uniform` on the parameters of functions other than the entry point", RewriteUniformParameters},
+      {"coverage-parameter", "`uint c : SV_Coverage` as a parameter of the entry point", RewriteCoverageParameter},
   };
   return kRewrites;
 }

@@ -39,5 +39,6 @@ void RewriteArrayCasts(const Source& source, Edits& edits);
 void RewriteInitializerLists(const Source& source, Edits& edits);
 void RewriteMatrixSwizzles(const Source& source, Edits& edits);
 void RewriteUniformParameters(const Source& source, Edits& edits);
+void RewriteCoverageParameter(const Source& source, Edits& edits);
 
 }  // namespace sp::hlsl::compat
