@@ -153,6 +153,17 @@ RunResult RunOne(const RunSpec& spec, eval::ReferenceCache& reference, const Pro
     r.accuracy.add(a);
     r.misclassifiedSeries.push_back(a.misclassifiedPct());
     eval::AddTexelDensity(now, density);
+    eval::LogHistogram frameDensity;
+    eval::AddTexelDensity(now, frameDensity);
+    if (frameDensity.count()) {
+      double error = 1.0 / frameDensity.percentile(0.001);
+      if (error > r.maxAliasingError) {
+        uint64_t texels = 0;
+        for (const tech::ShadowLayer& l : tech.Layers()) texels += uint64_t(l.width) * l.height;
+        r.maxAliasingError = error;
+        r.storageFactor = double(texels) * error * error / (double(spec.width) * spec.height);
+      }
+    }
     utilizationSum += eval::MeasureUtilization(now, tech.Layers());
     std::vector<float> refF = AsFloat(ref);
     std::ostringstream line;

@@ -136,6 +136,8 @@ nlohmann::json RunToJson(const RunResult& r, const std::map<std::string, std::st
       {"mean_abs_error", Round(r.accuracy.meanAbsError(), 1e6)},
       {"texels_per_pixel_median", r.texelsPerPixelMedian},
       {"texels_per_pixel_p05", r.texelsPerPixelP05},
+      {"max_aliasing_error", r.maxAliasingError},
+      {"storage_factor", r.storageFactor},
       {"utilization", r.utilization},
       {"flicker", r.flicker.mean()},
       {"flicker_reprojected", r.flickerReprojected.mean()},

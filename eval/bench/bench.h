@@ -51,6 +51,11 @@ struct RunResult {
 
   eval::Accuracy accuracy;
   double texelsPerPixelMedian = 0, texelsPerPixelP05 = 0;
+  // Lloyd et al.'s measures, of the worst frame: the largest projected size of a shadow texel in
+  // pixels over the visible receivers (1 / texels per pixel; the 99.9th percentile over pixels,
+  // so single-pixel derivative spikes at silhouettes do not decide it), and the storage factor
+  // it implies: the map texels needed for that error to be 1, per screen pixel.
+  double maxAliasingError = 0, storageFactor = 0;
   uint64_t densitySamples = 0;
   double utilization = 0;                   // mean over frames
   eval::Flicker flicker;                    // exact, same world points

@@ -44,6 +44,12 @@ METRICS = [
            "undersampled (blocky, jagged shadow edges)"),
     Metric("texels_per_pixel_p05", "texels/px p05", "", "{:.3g}",
            "5th percentile of texels per pixel: how badly the worst-sampled 5% of pixels fare"),
+    Metric("max_aliasing_error", "max aliasing error", "px", "{:.3g}",
+           "largest projected size of a shadow texel in pixels over the visible receivers, worst "
+           "frame (Lloyd et al.; 99.9th percentile over pixels); above 1 = visible texels"),
+    Metric("storage_factor", "storage factor", "", "{:.3g}",
+           "shadow-map texels needed, per screen pixel, for a maximum aliasing error of 1 "
+           "(the map's texels times the error squared, over the pixels)"),
     Metric("utilization", "utilization", "", "{:.2f}",
            "fraction of shadow texels sampled by at least one pixel (1 = no texel wasted)"),
     Metric("flicker", "flicker", "", "{:.3g}",

@@ -143,7 +143,7 @@ TEST(BenchCrossBackend, MetricsAreIdenticalOnBothBackendsAndValidationIsClean) {
   for (const char* k : {"scene", "technique", "params", "backend", "size", "frames", "device", "metrics", "series", "images"})
     EXPECT_TRUE(j.contains(k)) << k;
   for (const char* k : {"misclassified_pct", "false_lit_pct", "false_shadow_pct", "mean_abs_error", "texels_per_pixel_median",
-                        "texels_per_pixel_p05", "utilization", "flicker", "gpu_ms", "cpu_ms", "shadow_memory_bytes", "shadow_triangles"})
+                        "texels_per_pixel_p05", "max_aliasing_error", "storage_factor", "utilization", "flicker", "gpu_ms", "cpu_ms", "shadow_memory_bytes", "shadow_triangles"})
     EXPECT_TRUE(j["metrics"].contains(k)) << k;
   EXPECT_TRUE(j["metrics"]["gpu_ms"].contains("total"));
   EXPECT_EQ(j["params"]["resolution"], "1024");

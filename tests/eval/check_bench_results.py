@@ -9,7 +9,7 @@ import sys
 from pathlib import Path
 
 METRICS = ["misclassified_pct", "false_lit_pct", "false_shadow_pct", "mean_abs_error",
-           "texels_per_pixel_median", "texels_per_pixel_p05", "utilization", "flicker", "gpu_ms",
+           "texels_per_pixel_median", "texels_per_pixel_p05", "max_aliasing_error", "storage_factor", "utilization", "flicker", "gpu_ms",
            "cpu_ms", "shadow_memory_bytes", "shadow_triangles"]
 
 
@@ -52,6 +52,10 @@ def main(path, expected_runs):
         if not 0 < m["texels_per_pixel_p05"] <= m["texels_per_pixel_median"]:
             fail(f"{where}: texels per pixel p05 {m['texels_per_pixel_p05']} vs median "
                  f"{m['texels_per_pixel_median']}")
+        # The worst frame's error is at least that of the worst 5 % over all frames.
+        if not m["max_aliasing_error"] >= 0.999 / m["texels_per_pixel_p05"] or not m["storage_factor"] > 0:
+            fail(f"{where}: max aliasing error {m['max_aliasing_error']} (1 / p05 = {1 / m['texels_per_pixel_p05']}), "
+                 f"storage factor {m['storage_factor']}")
         gpu = m["gpu_ms"]
         for key in ["shadow", "lit", "total"]:
             if not number(gpu.get(key)) or gpu[key] < 0:
