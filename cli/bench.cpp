@@ -13,7 +13,8 @@
 namespace sp::cli {
 
 int RunBench(const Args& a) {
-  a.expectOnly({"scene", "technique", "backend", "size", "frames", "param", "triangles", "path", "out", "reference-cache", "validate"});
+  a.expectOnly({"scene", "technique", "backend", "size", "frames", "param", "triangles", "path", "out", "reference-cache", "validate",
+                "light-gamma"});
   if (!a.positionals().empty()) throw std::invalid_argument("unexpected argument '" + a.positionals()[0] + "'");
   bench::BenchOptions o;
   o.scenes = SplitList(a.get("scene", "default"), "scene");
@@ -35,6 +36,13 @@ int RunBench(const Args& a) {
   o.out = a.get("out", "out/bench/results.json");
   o.referenceCache = a.get("reference-cache", "");  // empty: bench::ReferenceCacheDir decides
   o.validate = a.has("validate");
+  if (a.has("light-gamma"))
+    for (const std::string& g : SplitList(a.get("light-gamma"), "light-gamma")) {
+      char* end = nullptr;
+      float v = std::strtof(g.c_str(), &end);
+      if (end == g.c_str() || *end) throw std::invalid_argument("--light-gamma takes degrees (got '" + g + "')");
+      o.lightGammas.push_back(v);
+    }
 
   ProgressPrinter progress("bench: ");
   nlohmann::json doc = bench::RunBench(o, progress);

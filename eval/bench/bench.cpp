@@ -113,6 +113,8 @@ void ValidateBenchOptions(const BenchOptions& o) {
   }
   if (o.triangles > scene::kMaxTargetTriangles)
     throw std::invalid_argument("--triangles " + std::to_string(o.triangles) + " is above the limit of " + std::to_string(scene::kMaxTargetTriangles));
+  for (float g : o.lightGammas)
+    if (!(g >= 0.0f && g <= 180.0f)) throw std::invalid_argument("--light-gamma values are degrees in [0, 180] (got " + std::to_string(g) + ")");
   if (o.techniques.empty()) throw std::invalid_argument("no technique given");
   if (o.backends.empty()) throw std::invalid_argument("no backend given");
   if (o.frames < 1) throw std::invalid_argument("--frames must be at least 1");
@@ -181,6 +183,17 @@ nlohmann::json RunToJson(const RunResult& r, const std::map<std::string, std::st
   return run;
 }
 
+glm::vec3 LightAtGamma(const glm::vec3& viewForward, float gammaDegrees) {
+  glm::vec3 f = glm::normalize(viewForward);
+  // The turn goes towards world down, so at 90 degrees the light comes from above the view axis;
+  // a camera looking straight down turns towards its own world z instead.
+  glm::vec3 down = glm::vec3(0, -1, 0) - f * glm::dot(glm::vec3(0, -1, 0), f);
+  if (glm::length(down) < 1e-4f) down = glm::vec3(0, 0, 1) - f * glm::dot(glm::vec3(0, 0, 1), f);
+  down = glm::normalize(down);
+  float g = glm::radians(gammaDegrees);
+  return glm::normalize(std::cos(g) * f + std::sin(g) * down);
+}
+
 nlohmann::json RunBench(const BenchOptions& o, const Progress& progress) {
   ValidateBenchOptions(o);
   fs::path out = o.out;
@@ -190,7 +203,8 @@ nlohmann::json RunBench(const BenchOptions& o, const Progress& progress) {
   std::vector<std::map<std::string, std::string>> sets = ParamSets(o.params);
 
   nlohmann::json doc = {{"runs", nlohmann::json::array()}};
-  size_t total = o.scenes.size() * o.techniques.size() * sets.size() * o.backends.size(), done = 0;
+  size_t total = o.scenes.size() * std::max<size_t>(1, o.lightGammas.size()) * o.techniques.size() * sets.size() * o.backends.size(),
+         done = 0;
   // Every scene is loaded (and its path checked) before the first run, so a bad name fails at once.
   std::vector<scene::Scene> scenes;
   for (const std::string& name : o.scenes) {
@@ -201,7 +215,19 @@ nlohmann::json RunBench(const BenchOptions& o, const Progress& progress) {
     if (sc.name.empty()) sc.name = fs::path(name).stem().string();
     if (sc.cameraPaths.empty()) sc.cameraPaths = scene::CameraPathsFor(sc);
     sc.cameraPath(o.path);  // throws listing the scene's paths
-    scenes.push_back(std::move(sc));
+    if (o.lightGammas.empty()) {
+      scenes.push_back(std::move(sc));
+      continue;
+    }
+    glm::vec3 forward = sc.cameraPath(o.path).at(0.0).forward();
+    for (float g : o.lightGammas) {
+      scene::Scene v = sc;
+      char label[32];
+      std::snprintf(label, sizeof label, "-gamma%g", double(g));
+      v.name = sc.name + label;
+      v.light.direction = LightAtGamma(forward, g);
+      scenes.push_back(std::move(v));
+    }
   }
   for (size_t si = 0; si < scenes.size(); ++si) {
     const scene::Scene& sc = scenes[si];

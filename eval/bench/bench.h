@@ -105,7 +105,15 @@ struct BenchOptions {
   // Empty: $SHADOWPORT_REFERENCE_CACHE, else reference-cache/ beside `out`.
   std::filesystem::path referenceCache;
   bool validate = false;
+  // Degrees; each value makes a variant of every scene whose light travels at that angle to the
+  // camera's view direction at the path's start (0: from behind the viewer, 90: across the view,
+  // 180: towards the viewer, duelling frusta), turned in the plane of the view and world down.
+  // Empty: the scenes' own lights.
+  std::vector<float> lightGammas;
 };
+
+// The light direction at `gammaDegrees` to `viewForward` (see BenchOptions::lightGammas).
+glm::vec3 LightAtGamma(const glm::vec3& viewForward, float gammaDegrees);
 
 // Checks scene, technique and parameter names and values before anything runs; throws
 // std::invalid_argument listing the valid names.

@@ -2,6 +2,8 @@
 // the reference cache goes when nobody says, and the cross-backend image comparison.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <optional>
 
@@ -12,6 +14,21 @@ namespace sp::test {
 namespace {
 
 using bench::ParseTechniqueSpec;
+
+// --light-gamma: the light travels at exactly gamma to the view direction, from above at 90.
+TEST(BenchLightGamma, LightTravelsAtTheAngleToTheView) {
+  for (glm::vec3 forward : {glm::vec3(0, 0, -1), glm::vec3(0.3f, -0.4f, -1), glm::vec3(0, -1, 0), glm::vec3(1, 0.2f, 0)})
+    for (float g : {0.0f, 1.0f, 30.0f, 90.0f, 150.0f, 179.0f, 180.0f}) {
+      glm::vec3 d = bench::LightAtGamma(forward, g);
+      float angle = glm::degrees(std::acos(std::clamp(glm::dot(d, glm::normalize(forward)), -1.0f, 1.0f)));
+      EXPECT_NEAR(angle, g, 0.01f) << "forward " << forward.x << "," << forward.y << "," << forward.z;
+      EXPECT_NEAR(glm::length(d), 1.0f, 1e-5f);
+    }
+  EXPECT_LT(bench::LightAtGamma(glm::vec3(0, 0, -1), 90.0f).y, -0.999f);  // overhead: straight down
+  bench::BenchOptions o;
+  o.lightGammas = {200.0f};
+  EXPECT_THROW(bench::ValidateBenchOptions(o), std::invalid_argument);
+}
 
 TEST(BenchTechniqueSpec, NameAloneAndNameWithParameters) {
   bench::TechniqueSpec plain = ParseTechniqueSpec("basic");
