@@ -122,6 +122,21 @@ TEST(D3D11Compat, MessagesAfterRewritesNameTheUsersLines) {
   EXPECT_TRUE(Contains(d.message, "undefinedThing")) << d.message;
 }
 
+TEST(D3D11Compat, ObjectArrayRefusals) {
+  hlsl::Diagnostic d = FirstError("Texture2D maps[2];\nfloat4 f() { return 0; }\n");
+  EXPECT_EQ(d.line, 1);
+  EXPECT_TRUE(Contains(d.message, "needs an explicit register")) << d.message;
+  d = FirstError("Texture2D maps[2] : register(t0);\nfloat4 g(Texture2D t);\nfloat4 f() {\n  return g(maps);\n}\n");
+  EXPECT_EQ(d.line, 4);
+  EXPECT_TRUE(Contains(d.message, "can only be used element by element")) << d.message;
+  d = FirstError("Texture2D maps[2] : register(t0);\nfloat4 g(Texture2D t[2]) { return 0; }\n");
+  EXPECT_EQ(d.line, 2);
+  EXPECT_TRUE(Contains(d.message, "an array of objects as a parameter ('t')")) << d.message;
+  d = FirstError("Texture2D maps[2] : register(t0);\nfloat4 f(int i) {\n  uint w, h;\n  maps[i].GetDimensions(w, h);\n  return w;\n}\n");
+  EXPECT_EQ(d.line, 4);
+  EXPECT_TRUE(Contains(d.message, "can only call a method that returns a value")) << d.message;
+}
+
 // Windows-era includes: backslashes, and a case that differs from the file's name.
 TEST(D3D11Compat, IncludesWithBackslashesAndAnotherCaseFindTheFile) {
   std::filesystem::path dir = TestOutputDir() / "windows-includes";
@@ -326,6 +341,59 @@ TEST_P(D3D11CompatRun, CoverageParameterReadsTheSampleMask) {
   ctx().PSSetShader(p.get());
   ctx().Draw(3, 0);
   for (uint32_t value : ReadTextureAs<uint32_t>(device(), ctx(), rt.texture.get())) EXPECT_EQ(value, 11u);
+}
+
+// Texture2D maps[3] : register(t1): one texture per register t1..t3, as PSSetShaderResources(1,
+// 3, ...) binds them; elements read with constant and run-time indices, samplers from an array.
+TEST_P(D3D11CompatRun, ArraysOfTexturesAndSamplersTakeOneRegisterPerElement) {
+  const char* vs = "float4 main(uint id : SV_VertexID) : SV_Position { return float4(id == 2 ? 3.0 : -1.0, id == 1 ? 3.0 : -1.0, 0, 1); }";
+  const char* ps = R"(
+Texture2D<float4> maps[3] : register(t1);
+SamplerState samplers[2] : register(s0);
+cbuffer C : register(b0) { int pick; };
+float4 main(float4 pos : SV_Position) : SV_Target {
+  float2 uv = pos.xy / 4;
+  uint w, h;
+  maps[2].GetDimensions(w, h);
+  return float4(maps[0].Sample(samplers[1], uv).r, maps[pick].SampleLevel(samplers[0], uv, 0).r, maps[2].Load(int3(0, 0, 0)).r, w);
+})";
+  ShaderBytecode psCode = CompileHlsl(ps, "ps_5_0", "main");
+  Ref<VertexShader> v = device().CreateVertexShader(CompileHlsl(vs, "vs_5_0", "main"));
+  Ref<PixelShader> p = device().CreatePixelShader(psCode);
+  std::vector<Ref<Texture2D>> textures;
+  std::vector<Ref<ShaderResourceView>> views;
+  for (int k = 0; k < 3; ++k) {
+    std::vector<float> texels(size_t(2 + k) * (2 + k) * 4, float(10 * (k + 1)));  // maps[k] is (2+k)^2 texels of 10(k+1)
+    textures.push_back(MakeTexture2D(device(), 2 + k, 2 + k, FORMAT_R32G32B32A32_FLOAT, BIND_SHADER_RESOURCE, texels.data()));
+    views.push_back(device().CreateShaderResourceView(textures.back().get()));
+  }
+  CSAMPLER_DESC pointDesc(DEFAULT);
+  pointDesc.Filter = FILTER_MIN_MAG_MIP_POINT;
+  Ref<SamplerState> s0 = device().CreateSamplerState(pointDesc), s1 = device().CreateSamplerState(pointDesc);
+  int pick = 1;
+  std::vector<float> cb(4, 0.0f);
+  std::memcpy(&cb[0], &pick, 4);
+  Ref<Buffer> cbuf = MakeBuffer(device(), BIND_CONSTANT_BUFFER, cb.data(), 16);
+
+  Target rt = MakeTarget(device(), 4, 4, FORMAT_R32G32B32A32_FLOAT);
+  RenderTargetView* rtvs[] = {rt.rtv.get()};
+  ctx().OMSetRenderTargets(1, rtvs, nullptr);
+  SetViewport(ctx(), 4, 4);
+  ctx().IASetPrimitiveTopology(PRIMITIVE_TOPOLOGY_TRIANGLELIST);
+  ctx().VSSetShader(v.get());
+  ctx().PSSetShader(p.get());
+  ctx().PSSetShaderResources(1, {views[0].get(), views[1].get(), views[2].get()});
+  ctx().PSSetSamplers(0, {s0.get(), s1.get()});
+  ctx().PSSetConstantBuffers(0, {cbuf.get()});
+  ctx().Draw(3, 0);
+  std::vector<float> got = ReadTextureAs<float>(device(), ctx(), rt.texture.get());
+  for (size_t px = 0; px < 16; ++px) {
+    SCOPED_TRACE(px);
+    EXPECT_EQ(got[px * 4 + 0], 10.0f);
+    EXPECT_EQ(got[px * 4 + 1], 20.0f);  // maps[pick], pick = 1
+    EXPECT_EQ(got[px * 4 + 2], 30.0f);
+    EXPECT_EQ(got[px * 4 + 3], 4.0f);  // maps[2] is 4 texels wide
+  }
 }
 
 // A Texture2DArray at t1 read in one pixel shader through a plain and a comparison sampler (a

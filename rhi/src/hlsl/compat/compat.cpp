@@ -12,6 +12,8 @@ const std::vector<Rewrite>& Rewrites() {
       {"initializer-list", "brace-elided and flat initializer lists for structs, vectors and arrays", RewriteInitializerLists},
       {"matrix-swizzle", "matrix swizzles (m._11_21_31, m._m00_m10), read and written", RewriteMatrixSwizzles},
       {"uniform-parameter", "`uniform` on the parameters of functions other than the entry point", RewriteUniformParameters},
+      {"object-array", "arrays of textures and samplers (Texture2D maps[4] : register(t0)), one register per element",
+       RewriteObjectArrays},
       {"coverage-parameter", "`uint c : SV_Coverage` as a parameter of the entry point", RewriteCoverageParameter},
   };
   return kRewrites;

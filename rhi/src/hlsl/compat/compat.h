@@ -40,5 +40,6 @@ void RewriteInitializerLists(const Source& source, Edits& edits);
 void RewriteMatrixSwizzles(const Source& source, Edits& edits);
 void RewriteUniformParameters(const Source& source, Edits& edits);
 void RewriteCoverageParameter(const Source& source, Edits& edits);
+void RewriteObjectArrays(const Source& source, Edits& edits);
 
 }  // namespace sp::hlsl::compat
