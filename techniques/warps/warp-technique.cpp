@@ -113,7 +113,7 @@ void WarpTechnique::RenderShadows(DeviceContext& ctx, SceneDrawer& drawer, const
     ctx.ClearDepthStencilView(dsvs_[c].get(), CLEAR_DEPTH, 1.0f, 0);
     ctx.RSSetState(Mirrored(fits_[c]) ? mirroredRasterizer_.get() : rasterizer_.get());
     if (settings_.linearDepth) {
-      LinearConstants lc{fits_[c].linearDepth, glm::vec4(settings_.linearBias, settings_.slopeBias, 0.0f, 0.0f)};
+      LinearConstants lc{fits_[c].linearDepth, glm::vec4(settings_.linearBias, settings_.linearSlopeBias, 0.0f, 0.0f)};
       ctx.UpdateSubresource(linearConstants_[c].get(), 0, nullptr, &lc, 0, 0);
       ctx.VSSetConstantBuffers(2, {linearConstants_[c].get()});
       ctx.PSSetConstantBuffers(2, {linearConstants_[c].get()});

@@ -10,7 +10,7 @@
 //           affine function of the world position): a vertex shader writing z * w to clip z
 //           would be interpolated linearly in screen space, which under a perspective warp is
 //           not linear depth inside a triangle. Its bias is D3D11's formula applied in the
-//           shader: linear_bias + slope_bias * max(|ddx|, |ddy|) of the linear depth.
+//           shader: linear_bias + linear_slope_bias * max(|ddx|, |ddy|) of the linear depth.
 // Lighting in shaders-hlsl/warps/shadow.hlsli.
 #pragma once
 #include <memory>
@@ -35,8 +35,11 @@ struct WarpSettings {
   WarpParams params;
   bool linearDepth = false;
   int depthBias = 100;      // depth=warped: D3D11 DepthBias
-  float slopeBias = 2.0f;   // D3D11 SlopeScaledDepthBias (depth=linear: applied in the shader)
-  float linearBias = 0.0f;  // depth=linear: constant bias in linear depth ([0, 1] over the cascade's body and casters)
+  float slopeBias = 2.0f;   // depth=warped: D3D11 SlopeScaledDepthBias
+  // depth=linear: D3D11's formula applied in the depth shader, in linear depth ([0, 1] over the
+  // cascade's body and casters): constant + slope * the largest change per map texel.
+  float linearBias = 0.0f;
+  float linearSlopeBias = 1.0f;
 };
 
 const char* WarpName(Warp warp);
