@@ -1,7 +1,8 @@
+// The warp techniques (psm, lispsm, tsm): fitting, the shadow passes and the lighting bindings;
+// see warp-technique.h.
 #include "warp-technique.h"
 
 #include <algorithm>
-#include <cstring>
 
 namespace sp::tech::warps {
 
