@@ -9,6 +9,9 @@ namespace sp::tech {
 std::unique_ptr<Technique> MakeBasicTechnique();
 std::unique_ptr<Technique> MakeCsmTechnique();
 std::unique_ptr<Technique> MakeSdsmTechnique();
+std::unique_ptr<Technique> MakePsmTechnique();
+std::unique_ptr<Technique> MakeLispsmTechnique();
+std::unique_ptr<Technique> MakeTsmTechnique();
 
 namespace {
 struct Entry {
@@ -20,6 +23,9 @@ const Entry kTechniques[] = {
     {"basic", MakeBasicTechnique},
     {"csm", MakeCsmTechnique},
     {"sdsm", MakeSdsmTechnique},
+    {"psm", MakePsmTechnique},
+    {"lispsm", MakeLispsmTechnique},
+    {"tsm", MakeTsmTechnique},
 };
 }  // namespace
 

@@ -98,12 +98,19 @@ uint64_t SceneDrawer::DrawDepth(DeviceContext& ctx, const glm::mat4& viewProj) {
 }
 
 uint64_t SceneDrawer::DrawDepth(DeviceContext& ctx, const glm::mat4& viewProj, const std::function<bool(uint32_t instance)>& keep) {
+  return DrawDepth(ctx, viewProj, keep, DepthShaders{});
+}
+
+uint64_t SceneDrawer::DrawDepth(DeviceContext& ctx, const glm::mat4& viewProj, const std::function<bool(uint32_t instance)>& keep,
+                                const DepthShaders& shaders) {
   SetFrame(ctx, viewProj, nullptr);
   gpu_.BindGeometry(ctx);
+  // The caller's VS has depth-only's input signature, so depth-only's layout serves it too.
   ctx.IASetInputLayout(depthLayout_.get());
-  ctx.VSSetShader(depthVs_.get());
-  ctx.PSSetShader(nullptr);
+  ctx.VSSetShader(shaders.vs ? shaders.vs : depthVs_.get());
+  ctx.PSSetShader(shaders.ps);
   BindConstants(ctx, ShaderStage::Vertex);
+  if (shaders.ps) BindConstants(ctx, ShaderStage::Pixel);
   uint64_t triangles = 0;
   for (const scene::DrawItem& d : gpu_.draws()) {
     if (!keep(d.instance)) continue;

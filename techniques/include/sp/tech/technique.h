@@ -93,6 +93,16 @@ class SceneDrawer {
   uint64_t DrawDepth(DeviceContext& ctx, const glm::mat4& viewProj);
   // The same for the instances `keep` accepts (a technique's culling against its light frustum).
   uint64_t DrawDepth(DeviceContext& ctx, const glm::mat4& viewProj, const std::function<bool(uint32_t instance)>& keep);
+  // The same with a technique's own shaders in place of depth-only's (e.g. a pixel shader that
+  // writes SV_Depth). `vs` must read depth-only's vertex input (POSITION) and may read Frame and
+  // Object (b0, b1), which are bound to both stages; `ps` may be null. The caller binds anything
+  // else they read.
+  struct DepthShaders {
+    VertexShader* vs = nullptr;
+    PixelShader* ps = nullptr;
+  };
+  uint64_t DrawDepth(DeviceContext& ctx, const glm::mat4& viewProj, const std::function<bool(uint32_t instance)>& keep,
+                     const DepthShaders& shaders);
   // Writes Frame (b0) for a pass and Object (b1) per instance; used by the lit pass too.
   void SetFrame(DeviceContext& ctx, const glm::mat4& viewProj, const FrameInputs* lighting);
   void SetObject(DeviceContext& ctx, uint32_t instance);
