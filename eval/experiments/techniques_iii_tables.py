@@ -18,7 +18,13 @@ METRICS = [("misclassified_pct", "misclassified %"), ("texels_per_pixel_median",
            ("storage_factor", "storage factor"), ("flicker", "flicker"), ("gpu_ms.total", "GPU ms total (Vulkan)")]
 
 
+DENSITY = ("texels_per_pixel_median", "texels_per_pixel_p05", "max_aliasing_error", "storage_factor")
+
+
 def metric(run, key):
+    # No lit receiver in view (a light at the horizon facing the camera): no density to report.
+    if key in DENSITY and not run["metrics"].get("texels_per_pixel_median"):
+        return None
     m = run["metrics"]
     for part in key.split("."):
         m = m.get(part) if isinstance(m, dict) else None
@@ -73,7 +79,7 @@ def charts(out, data, prefix):
         for key, label in METRICS:
             fig, ax = plt.subplots(figsize=(7, 4))
             for v, by in variants.items():
-                gs = sorted(by)
+                gs = [g for g in sorted(by) if metric(by[g][0], key) is not None]
                 ys = [metric(by[g][0], key) for g in gs]
                 ax.plot(gs, ys, marker="o", label=v)
             ax.set_xlabel("gamma: angle between view and light direction (degrees)")
