@@ -15,7 +15,7 @@ SP="$ROOT/shadowport"
 mkdir -p "$OUT"
 bench() { local name="$1"; shift; "$SP" bench --backend both --size "$SIZE" --frames "$FRAMES" --out "$OUT/$name.json" "$@"; }
 SCENES=terrain-city,ShadowColumns
-GAMMAS=0,15,30,45,60,75,90,105,120,135,150,165,180
+GAMMAS="${GAMMAS:-0,15,30,45,60,75,90,105,120,135,150,165,180}"
 
 # 1. The angle sweep at equal memory.
 bench sweep --scene $SCENES --light-gamma $GAMMAS \

@@ -3,10 +3,15 @@
 // Texture2DArray; the cascade is chosen by view depth (csm's interval selection). The compared
 // depth is the warped z after the divide (depth=warped) or the light-space linear depth row
 // (depth=linear, the map holding what warps/depth-linear.hlsl wrote, bias included), both read
-// with the hardware 2x2 comparison filter. Points outside the map, beyond its far plane or behind
-// the warp's eye (w <= 0: outside every body FitWarp fits) are lit.
+// with the comparison filter SHADOW_FILTER / SHADOW_KERNEL select (common/shadow-filter.hlsli;
+// hw2x2 by default). Points outside the map, beyond its far plane or behind the warp's eye
+// (w <= 0: outside every body FitWarp fits) are lit. With receiver_plane=1 every filter tap
+// compares against the receiver's plane, from the screen derivatives of the map coordinates after
+// the divide (the warp is not affine, but over a pixel's footprint it nearly is); where
+// neighbouring pixels read different cascades the derivatives are wrong for those pixels only.
 #include "common/frame.hlsli"
 #include "common/shadow-lookup.hlsli"
+#include "common/shadow-filter.hlsli"
 
 #define WARP_MAX_CASCADES 4
 
@@ -15,7 +20,7 @@ cbuffer WarpShadow : register(b2) {
   float4 warpLinear[WARP_MAX_CASCADES];      // world -> light-space linear depth per cascade
   float4 warpSplitFar;                       // view depth where each cascade ends
   float4 warpCameraForward;                  // w: cascade count
-  float4 warpSettings;                       // x: linear depth (0/1), y: map resolution (texels)
+  float4 warpSettings;                       // x: linear depth (0/1), y: map resolution (texels), z: receiver plane (0/1)
 };
 
 Texture2DArray<float> WarpMap : register(t0);
@@ -44,10 +49,20 @@ bool WarpOutside(float4 m) { return m.w <= 0.0 || any(m.xy < 0.0) || any(m.xy > 
 
 float ShadowVisibility(float3 worldPos, float3 worldNormal, float4 svPosition) {
   int c = WarpSelect(worldPos);
-  if (c < 0) return 1.0;
-  float4 m = WarpCoord(worldPos, c);
-  if (WarpOutside(m)) return 1.0;
-  return WarpMap.SampleCmpLevelZero(WarpSampler, float3(m.xy, (float)c), m.z);
+  // Derivatives first, in uniform control flow (lit.hlsl calls this for every pixel).
+  float4 m = WarpCoord(worldPos, max(c, 0));
+  float3 mDdx = ddx(m.xyz);
+  float3 mDdy = ddy(m.xyz);
+  if (c < 0 || WarpOutside(m)) return 1.0;
+  ShadowFilterInput fi;
+  fi.uv = m.xy;
+  fi.layer = (float)c;
+  fi.depth = m.z;
+  fi.texelSize = 1.0 / warpSettings.yy;
+  fi.uvClamp = float4(0.0, 0.0, 1.0, 1.0);
+  fi.depthGradient = warpSettings.z > 0.5 ? ReceiverPlaneDepthGradient(mDdx, mDdy) : float2(0.0, 0.0);
+  fi.pixel = svPosition.xy;
+  return ShadowFilter(WarpMap, WarpSampler, fi);
 }
 
 // Layer = cascade; texels of its slice (row 0 at the top).

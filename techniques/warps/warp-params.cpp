@@ -46,6 +46,9 @@ std::vector<ParamSpec> WarpTechniqueParams(Warp warp) {
       // lights of the singular-configuration tests (docs/techniques.md).
       {P::Float, "linear_slope_bias", "depth=linear: slope-scaled bias, times the linear depth's largest change per map texel (D3D11's slope term, applied in the depth shader)",
        "1.0", -100, 100, {}},
+      {P::Choice, "filter", "comparison filter (common/shadow-filter.hlsli)", "hw2x2", 0, 0, {"hw2x2", "box", "gauss", "gathercmp", "poisson"}},
+      {P::Choice, "kernel", "filter kernel width in texels (box, gauss, gathercmp, poisson)", "3", 0, 0, {"3", "5", "7", "9"}},
+      {P::Int, "receiver_plane", "1: receiver-plane depth bias per filter tap, from the derivatives of the warped map coordinates", "0", 0, 1, {}},
   };
   switch (warp) {
     case Warp::Psm:
@@ -76,6 +79,12 @@ WarpSettings WarpSettingsFrom(Warp warp, const ParamValues& p) {
   s.slopeBias = p.getFloat("slope_bias");
   s.linearBias = p.getFloat("linear_bias");
   s.linearSlopeBias = p.getFloat("linear_slope_bias");
+  const std::string& filter = p.getChoice("filter");
+  const char* const filters[] = {"hw2x2", "box", "gauss", "gathercmp", "poisson"};
+  for (int i = 0; i < 5; ++i)
+    if (filter == filters[i]) s.filter = i;
+  s.kernel = std::stoi(p.getChoice("kernel"));
+  s.receiverPlane = p.getInt("receiver_plane") == 1;
   if (warp == Warp::Psm) s.params.psmSlideBack = p.getFloat("slide_back");
   if (warp == Warp::Lispsm) s.params.lispsmScale = p.getFloat("n_scale");
   if (warp == Warp::Tsm) {

@@ -14,7 +14,7 @@ struct Constants {
   glm::vec4 linearDepth[kMaxWarpCascades];
   glm::vec4 splitFar;       // view depth where each cascade ends
   glm::vec4 cameraForward;  // w: cascade count
-  glm::vec4 settings;       // linear depth (0/1), resolution, unused, unused
+  glm::vec4 settings;       // linear depth (0/1), resolution, receiver-plane bias (0/1), unused
 };
 static_assert(sizeof(Constants) == 368);
 
@@ -97,7 +97,7 @@ void WarpTechnique::RenderShadows(DeviceContext& ctx, SceneDrawer& drawer, const
     k.splitFar[c] = splits_[c + 1];
   }
   k.cameraForward = glm::vec4(frame.camera.forward(), float(settings_.cascades));
-  k.settings = glm::vec4(settings_.linearDepth ? 1.0f : 0.0f, float(settings_.resolution), 0.0f, 0.0f);
+  k.settings = glm::vec4(settings_.linearDepth ? 1.0f : 0.0f, float(settings_.resolution), settings_.receiverPlane ? 1.0f : 0.0f, 0.0f);
   ctx.UpdateSubresource(constants_.get(), 0, nullptr, &k, 0, 0);
 
   // The maps are read by the previous frame's lit pass; unbind them before writing.
@@ -123,6 +123,11 @@ void WarpTechnique::RenderShadows(DeviceContext& ctx, SceneDrawer& drawer, const
       triangles_ += drawer.DrawDepth(ctx, fits_[c].viewProj, all);
     }
   }
+}
+
+// The filter is compiled in (as csm's); depth mode and receiver plane are uniform branches.
+std::vector<hlsl::Define> WarpTechnique::LightingDefines() const {
+  return {{"SHADOW_FILTER", std::to_string(settings_.filter)}, {"SHADOW_KERNEL", std::to_string(settings_.filter == 0 ? 3 : settings_.kernel)}};
 }
 
 void WarpTechnique::BindLighting(DeviceContext& ctx) {

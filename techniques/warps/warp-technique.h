@@ -40,6 +40,13 @@ struct WarpSettings {
   // cascade's body and casters): constant + slope * the largest change per map texel.
   float linearBias = 0.0f;
   float linearSlopeBias = 1.0f;
+  // The comparison filter of common/shadow-filter.hlsli (0 hw2x2, 1 box, 2 gauss, 3 gathercmp,
+  // 4 poisson) and its kernel, as csm's `filter` and `kernel`.
+  int filter = 0;
+  int kernel = 3;
+  // Receiver-plane depth bias: each filter tap compares against the receiver's plane, from the
+  // screen derivatives of the warped map coordinates (King's "bias in warped space" alternative).
+  bool receiverPlane = false;
 };
 
 const char* WarpName(Warp warp);
@@ -54,6 +61,7 @@ class WarpTechnique final : public Technique {
   void Configure(Device& device, const ParamValues& params) override;
   void RenderShadows(DeviceContext& ctx, SceneDrawer& drawer, const FrameInputs& frame) override;
   std::string LightingInclude() const override { return "warps/shadow.hlsli"; }
+  std::vector<hlsl::Define> LightingDefines() const override;
   void BindLighting(DeviceContext& ctx) override;
   ShadowStats Stats() const override;
   std::vector<ShadowLayer> Layers() const override;

@@ -65,6 +65,41 @@ TEST_P(WarpTechniqueTest, ShadowMatchesAnalyticShadowOfAFloatingBox) {
       }
 }
 
+// The PCF family and the receiver-plane bias on the warped maps: the same box shadow. A wider
+// kernel softens the edge over more warped texels (about a pixel each here), so the band grows
+// with the kernel; with the receiver plane, the slope bias is off, so the plane alone keeps the
+// floor free of acne.
+TEST_P(WarpTechniqueTest, FiltersAndReceiverPlaneBiasKeepTheShadow) {
+  const uint32_t W = 128, H = 128;
+  scene::Scene s = FloatingBox(true);
+  std::vector<int> expected = AnalyticFloor(s, W, H);
+  struct Case {
+    const char* warp;
+    std::map<std::string, std::string> params;
+    int band;
+  };
+  const Case cases[] = {
+      {"lispsm", {{"filter", "box"}, {"kernel", "3"}}, 3},
+      {"tsm", {{"filter", "gauss"}, {"kernel", "5"}}, 4},
+      {"psm", {{"filter", "gathercmp"}, {"kernel", "5"}}, 4},
+      {"lispsm", {{"filter", "box"}, {"kernel", "5"}, {"receiver_plane", "1"}, {"slope_bias", "0"}}, 4},
+      {"tsm", {{"filter", "poisson"}, {"kernel", "5"}, {"receiver_plane", "1"}, {"linear_slope_bias", "0"}}, 4},
+  };
+  for (const Case& k : cases) {
+    std::string name = k.warp;
+    for (const auto& [key, v] : k.params) name += "-" + key + "=" + v;
+    SCOPED_TRACE(name);
+    std::unique_ptr<tech::Renderer> r = MakeRenderer(k.warp, s, W, H, k.params);
+    r->RenderFrame(s.camera, s.light);
+    std::vector<uint8_t> img = r->ReadColor();
+    Comparison c = CompareWithAnalytic(img, expected, W, H, k.band);
+    EXPECT_GT(c.checked, int(W * H / 3));
+    EXPECT_GT(c.shadow, 80);  // shadowed pixels outside the band: 102 with a 4-pixel band
+    EXPECT_EQ(c.wrong, 0);
+    if (c.wrong) WritePng(TestOutputDir() / (name + ".png"), W, H, img.data());
+  }
+}
+
 // The lab's lookup is the texel ToTexel computes on the CPU, in the cascade interval selection
 // picks, and every receiving pixel reads a map.
 TEST_P(WarpTechniqueTest, LookupReadsWhereTheCpuFitSays) {
