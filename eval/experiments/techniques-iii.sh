@@ -22,7 +22,10 @@ bench sweep --scene $SCENES --light-gamma $GAMMAS \
   --technique basic:resolution=2048,csm:cascades=4:resolution=1024,sdsm:cascades=4:resolution=1024,psm:resolution=2048,lispsm:resolution=2048,tsm:resolution=2048,lispsm:cascades=4:resolution=1024,tsm:cascades=4:resolution=1024
 # 2. Depth: biasing in warped space against storing light-space linear depth.
 bench depth --scene $SCENES --light-gamma 30,60,90,120 --technique psm,lispsm,tsm --param depth=warped,linear
-# 3. Each warp's parameter trading near against far quality.
+# 3. Receiver-plane bias against the slope bias of each depth mode, with a 3x3 box filter.
+bench bias --scene $SCENES --light-gamma 45,90,135 --technique psm:filter=box,lispsm:filter=box,tsm:filter=box \
+  --param depth=warped,linear --param receiver_plane=0,1
+# 4. Each warp's parameter trading near against far quality.
 bench psm-slide --scene $SCENES --light-gamma 45,90,135 --technique psm --param slide_back=0.1,0.3,1,3
 bench lispsm-n --scene $SCENES --light-gamma 45,90,135 --technique lispsm --param n_scale=0.5,1,2,4
 bench tsm-focus --scene $SCENES --light-gamma 45,90,135 --technique tsm --param focus=0.6,0.7,0.8,0.9

@@ -96,6 +96,7 @@ def charts(out, data, prefix):
 def main():
     out = sys.argv[1]
     for name, title in (("sweep", "Equal memory (4 Mi texels)"), ("depth", "Depth in warped space against linear depth"),
+                        ("bias", "Receiver-plane bias (box 3x3)"),
                         ("psm-slide", "PSM slide-back"), ("lispsm-n", "LiSPSM n scale"), ("tsm-focus", "TSM focus line")):
         path = Path(out) / f"{name}.json"
         if not path.exists():
