@@ -178,6 +178,21 @@ TEST(D3D11Compat, DeepNestingIsAnErrorNotACrash) {
 
 class D3D11CompatRun : public BackendTest {
  protected:
+  // A triangle covering a 4x4 target (clockwise: D3D's front face), `ps` and `rt` bound; the
+  // caller binds the pixel shader's resources and calls Draw(3, 0).
+  void BindFullscreenPass(const Target& rt, PixelShader* ps) {
+    if (!fullscreenVs_)
+      fullscreenVs_ = device().CreateVertexShader(CompileHlsl(
+          "float4 main(uint id : SV_VertexID) : SV_Position { return float4(id == 2 ? 3.0 : -1.0, id == 1 ? 3.0 : -1.0, 0, 1); }", "vs_5_0",
+          "main"));
+    RenderTargetView* rtvs[] = {rt.rtv.get()};
+    ctx().OMSetRenderTargets(1, rtvs, nullptr);
+    SetViewport(ctx(), 4, 4);
+    ctx().IASetPrimitiveTopology(PRIMITIVE_TOPOLOGY_TRIANGLELIST);
+    ctx().VSSetShader(fullscreenVs_.get());
+    ctx().PSSetShader(ps);
+  }
+
   // Runs `main` of a cs_5_0 source with cbuffer b0 = `constants` and u0 = `outputs` float4s.
   std::vector<float> Run(const std::string& src, const std::vector<float>& constants, uint32_t outputs) {
     Ref<ComputeShader> cs = device().CreateComputeShader(CompileHlsl(src, "cs_5_0", "main"));
@@ -192,6 +207,9 @@ class D3D11CompatRun : public BackendTest {
     ctx().CSSetUnorderedAccessViews(0, {nullptr});
     return ReadBufferAs<float>(device(), ctx(), out.buffer.get());
   }
+
+ private:
+  Ref<VertexShader> fullscreenVs_;
 };
 
 void ExpectRows(const std::vector<float>& got, const std::vector<std::vector<float>>& expect) {
@@ -328,17 +346,10 @@ RWStructuredBuffer<float4> o : register(u0);
 // `uint coverage : SV_Coverage` as an entry parameter (glslang alone leaves it unconnected): a
 // pixel fully covered by the triangle in a single-sampled target has coverage 1.
 TEST_P(D3D11CompatRun, CoverageParameterReadsTheSampleMask) {
-  const char* vs = "float4 main(uint id : SV_VertexID) : SV_Position { return float4(id == 2 ? 3.0 : -1.0, id == 1 ? 3.0 : -1.0, 0, 1); }";
   const char* ps = "uint main(float4 pos : SV_Position, uint coverage : SV_Coverage) : SV_Target { return coverage + 10; }";
-  Ref<VertexShader> v = device().CreateVertexShader(CompileHlsl(vs, "vs_5_0", "main"));
   Ref<PixelShader> p = device().CreatePixelShader(CompileHlsl(ps, "ps_5_0", "main"));
   Target rt = MakeTarget(device(), 4, 4, FORMAT_R32_UINT);
-  RenderTargetView* rtvs[] = {rt.rtv.get()};
-  ctx().OMSetRenderTargets(1, rtvs, nullptr);
-  SetViewport(ctx(), 4, 4);
-  ctx().IASetPrimitiveTopology(PRIMITIVE_TOPOLOGY_TRIANGLELIST);
-  ctx().VSSetShader(v.get());
-  ctx().PSSetShader(p.get());
+  BindFullscreenPass(rt, p.get());
   ctx().Draw(3, 0);
   for (uint32_t value : ReadTextureAs<uint32_t>(device(), ctx(), rt.texture.get())) EXPECT_EQ(value, 11u);
 }
@@ -346,7 +357,6 @@ TEST_P(D3D11CompatRun, CoverageParameterReadsTheSampleMask) {
 // Texture2D maps[3] : register(t1): one texture per register t1..t3, as PSSetShaderResources(1,
 // 3, ...) binds them; elements read with constant and run-time indices, samplers from an array.
 TEST_P(D3D11CompatRun, ArraysOfTexturesAndSamplersTakeOneRegisterPerElement) {
-  const char* vs = "float4 main(uint id : SV_VertexID) : SV_Position { return float4(id == 2 ? 3.0 : -1.0, id == 1 ? 3.0 : -1.0, 0, 1); }";
   const char* ps = R"(
 Texture2D<float4> maps[3] : register(t1);
 SamplerState samplers[2] : register(s0);
@@ -358,7 +368,6 @@ float4 main(float4 pos : SV_Position) : SV_Target {
   return float4(maps[0].Sample(samplers[1], uv).r, maps[pick].SampleLevel(samplers[0], uv, 0).r, maps[2].Load(int3(0, 0, 0)).r, w);
 })";
   ShaderBytecode psCode = CompileHlsl(ps, "ps_5_0", "main");
-  Ref<VertexShader> v = device().CreateVertexShader(CompileHlsl(vs, "vs_5_0", "main"));
   Ref<PixelShader> p = device().CreatePixelShader(psCode);
   std::vector<Ref<Texture2D>> textures;
   std::vector<Ref<ShaderResourceView>> views;
@@ -376,12 +385,7 @@ float4 main(float4 pos : SV_Position) : SV_Target {
   Ref<Buffer> cbuf = MakeBuffer(device(), BIND_CONSTANT_BUFFER, cb.data(), 16);
 
   Target rt = MakeTarget(device(), 4, 4, FORMAT_R32G32B32A32_FLOAT);
-  RenderTargetView* rtvs[] = {rt.rtv.get()};
-  ctx().OMSetRenderTargets(1, rtvs, nullptr);
-  SetViewport(ctx(), 4, 4);
-  ctx().IASetPrimitiveTopology(PRIMITIVE_TOPOLOGY_TRIANGLELIST);
-  ctx().VSSetShader(v.get());
-  ctx().PSSetShader(p.get());
+  BindFullscreenPass(rt, p.get());
   ctx().PSSetShaderResources(1, {views[0].get(), views[1].get(), views[2].get()});
   ctx().PSSetSamplers(0, {s0.get(), s1.get()});
   ctx().PSSetConstantBuffers(0, {cbuf.get()});
@@ -399,7 +403,6 @@ float4 main(float4 pos : SV_Position) : SV_Target {
 // A Texture2DArray at t1 read in one pixel shader through a plain and a comparison sampler (a
 // moment-map permutation and a PCF permutation in one): two SPIR-V variables at one register.
 TEST_P(D3D11CompatRun, TextureArrayReadThroughAPlainAndAComparisonSampler) {
-  const char* vs = "float4 main(uint id : SV_VertexID) : SV_Position { return float4(id == 2 ? 3.0 : -1.0, id == 1 ? 3.0 : -1.0, 0, 1); }";  // clockwise
   const char* ps = R"(
 Texture2D unusedAtT0 : register(t0);
 Texture2DArray ShadowMap : register(t1);
@@ -412,7 +415,6 @@ float4 main(float4 pos : SV_Position) : SV_Target {
 })";
   ShaderBytecode psCode = CompileHlsl(ps, "ps_5_0", "main");
   ASSERT_EQ(psCode.reflection.resources.size(), 3u);  // t1, s0, s1: t1 once
-  Ref<VertexShader> v = device().CreateVertexShader(CompileHlsl(vs, "vs_5_0", "main"));
   Ref<PixelShader> p = device().CreatePixelShader(psCode);
 
   TEXTURE2D_DESC td = {4, 4, 1, 2, FORMAT_R32_TYPELESS, {1, 0}, USAGE_DEFAULT, BIND_DEPTH_STENCIL | BIND_SHADER_RESOURCE, 0, 0};
@@ -434,12 +436,7 @@ float4 main(float4 pos : SV_Position) : SV_Target {
   Ref<SamplerState> cmpSampler = device().CreateSamplerState(cmpDesc);
 
   Target rt = MakeTarget(device(), 4, 4, FORMAT_R32G32B32A32_FLOAT);
-  RenderTargetView* rtvs[] = {rt.rtv.get()};
-  ctx().OMSetRenderTargets(1, rtvs, nullptr);
-  SetViewport(ctx(), 4, 4);
-  ctx().IASetPrimitiveTopology(PRIMITIVE_TOPOLOGY_TRIANGLELIST);
-  ctx().VSSetShader(v.get());
-  ctx().PSSetShader(p.get());
+  BindFullscreenPass(rt, p.get());
   ctx().PSSetShaderResources(1, {srv.get()});
   ctx().PSSetSamplers(0, {pointSampler.get(), cmpSampler.get()});
   ctx().Draw(3, 0);
