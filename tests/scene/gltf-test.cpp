@@ -51,7 +51,9 @@ TEST(GltfLoader, SharedScenesLoadWithTheFilesTriangleCountsAndBounds) {
 class MalformedGltf : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::path(SHADOWPORT_TEST_OUTPUT_DIR) / "malformed-gltf";
+    // One folder per test: ctest runs them in parallel, and one test rewriting tri.bin while
+    // another reads it made the reader see an empty file.
+    dir_ = fs::path(SHADOWPORT_TEST_OUTPUT_DIR) / "malformed-gltf" / ::testing::UnitTest::GetInstance()->current_test_info()->name();
     fs::create_directories(dir_);
     // A valid one-triangle file to break in different ways.
     float pos[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
