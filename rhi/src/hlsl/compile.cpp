@@ -237,7 +237,8 @@ std::vector<Diagnostic> ParseGlslangWarnings(const std::string& log, const std::
     else continue;
     if (d.message.find("attribute does not apply to a loop") != std::string::npos ||
         d.message.find("attribute does not apply to a switch") != std::string::npos ||
-        d.message.find("'#pragma once' : not implemented") != std::string::npos)  // the Includer implements it
+        // glslang's own words for the pragma, which the Includer honours
+        d.message.find("'#pragma once' : not implemented") != std::string::npos)
       continue;
     out.push_back(std::move(d));
   }

@@ -5,23 +5,20 @@
 // becomes an initializer list naming those components: { packed[0].x, packed[0].y, ... }.
 // Only in a declaration's initializer, where a list is valid; only from a variable declared
 // with a scalar or vector type (arrays of them included). Anything else is refused.
-#include <regex>
-
 #include "compat.h"
 
 namespace sp::hlsl::compat {
 namespace {
 
 struct NumericType {
-  std::string scalar;  // float, int, ...
   int components = 0;  // 1 for scalars, 2..4 for vectors; 0 when not a scalar or vector type
 };
 
+// Scalars and vectors only: a matrix's component order in a cast is not what this rewrite lists.
 NumericType ParseNumeric(const std::string& t) {
-  static const std::regex re(R"((float|int|uint|half|double|bool|dword|min16float|min10float|min16int|min12int|min16uint)([1-4])?)");
-  std::smatch m;
-  if (!std::regex_match(t, m, re)) return {};
-  return {m[1].str(), m[2].matched ? std::stoi(m[2].str()) : 1};
+  NumericTypeName n;
+  if (!ParseNumericTypeName(t, &n) || n.matrix) return {};
+  return {n.components};
 }
 
 // Array dimensions written as `[N]` after a name, multiplied; false when one is not a literal.

@@ -1,6 +1,17 @@
 #include "compat.h"
 
+#include <regex>
+
 namespace sp::hlsl::compat {
+
+bool ParseNumericTypeName(const std::string& name, NumericTypeName* type) {
+  static const std::regex re(R"((float|int|uint|half|double|bool|dword|min16float|min10float|min16int|min12int|min16uint)([1-4])?(?:x([1-4]))?)");
+  std::smatch m;
+  if (!std::regex_match(name, m, re)) return false;
+  type->components = (m[2].matched ? std::stoi(m[2].str()) : 1) * (m[3].matched ? std::stoi(m[3].str()) : 1);
+  type->matrix = m[3].matched;
+  return true;
+}
 
 const std::vector<Rewrite>& Rewrites() {
   static const std::vector<Rewrite> kRewrites = {

@@ -19,6 +19,14 @@ struct Rewrite {
   void (*run)(const Source& source, Edits& edits);
 };
 
+// HLSL's numeric type names (float, int3, half4x4, min16float2, ...; not vector<T, N>): the
+// number of scalars and whether it is a matrix. False for any other name.
+struct NumericTypeName {
+  int components = 0;
+  bool matrix = false;
+};
+bool ParseNumericTypeName(const std::string& name, NumericTypeName* type);
+
 // The rewrites, in the order they run (each sees the previous one's output).
 const std::vector<Rewrite>& Rewrites();
 

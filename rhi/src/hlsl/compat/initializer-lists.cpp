@@ -30,12 +30,11 @@ struct Type {
 using TypePtr = std::shared_ptr<Type>;
 
 TypePtr NumericType(const std::string& name) {
-  static const std::regex re(R"((float|int|uint|half|double|bool|dword|min16float|min10float|min16int|min12int|min16uint)([1-4])?(?:x([1-4]))?)");
-  std::smatch m;
-  if (!std::regex_match(name, m, re)) return nullptr;
+  NumericTypeName n;
+  if (!ParseNumericTypeName(name, &n)) return nullptr;
   auto t = std::make_shared<Type>();
   t->spelling = name;
-  t->components = (m[2].matched ? std::stoi(m[2].str()) : 1) * (m[3].matched ? std::stoi(m[3].str()) : 1);
+  t->components = n.components;
   return t;
 }
 
@@ -140,7 +139,8 @@ int LeafComponents(const Source& s, const Item& leaf) {
   if (b == a + 1 && (s[a].kind == TokenKind::Number || s[a].Is("true") || s[a].Is("false"))) return 1;
   if (s[a].IsIdentifier() && s.Is(a + 1, "(") && s.Matching(a + 1) == b - 1)
     if (TypePtr t = NumericType(s[a].text)) return t->components;
-  if (b >= a + 3 && s[b - 2].Is(".") && std::regex_match(s[b - 1].text, std::regex("[xyzw]{1,4}|[rgba]{1,4}"))) return int(s[b - 1].text.size());
+  static const std::regex swizzle("[xyzw]{1,4}|[rgba]{1,4}");
+  if (b >= a + 3 && s[b - 2].Is(".") && std::regex_match(s[b - 1].text, swizzle)) return int(s[b - 1].text.size());
   return 0;
 }
 
