@@ -20,7 +20,7 @@
 //          bilinear interpolation adds a variance of f(1-f) <= 1/4 texel^2 per axis).
 //   poisson: 16 taps at kShadowPoissonDisk * N/2 texels, rotated by a per-pixel angle, 1/16 each.
 // Receiver-plane bias: a tap at texel-space offset o compares
-//   depth + dot(o * texelSize, depthGradient) - dot(abs(depthGradient), texelSize)
+//   depth + dot(o * texelSize, depthGradient) - min(dot(abs(depthGradient), texelSize), RECEIVER_PLANE_MAX_FOOTPRINT)
 // (the last term is explained in ShadowFilterSetup; it is 0 when the gradient is).
 // Every tap position is clamped, in texel space, into the centres of the texels inside uvClamp,
 // which is CLAMP addressing confined to the rectangle: a tap pushed onto the edge centre reads
@@ -44,6 +44,16 @@
 
 #define SHADOW_KERNEL_HALF (SHADOW_KERNEL / 2)
 #define SHADOW_POISSON_TAPS 16
+
+// The most the receiver-plane footprint term (ShadowFilterSetup) may move the reference, in the
+// map's depth units; a technique may define it lower before including this file. The term is a
+// full texel of the receiver's slope, which grows without bound as the receiver turns edge-on to
+// the light; under a small flat occluder (a column's capital over its shaft) it then moves the
+// reference past the occluder: light leaks. The default leaves it unbounded, as the techniques
+// whose receiver-plane mode has no other bias need (csm: clamping it brings their acne back).
+#ifndef RECEIVER_PLANE_MAX_FOOTPRINT
+#define RECEIVER_PLANE_MAX_FOOTPRINT 3.0e38
+#endif
 
 struct ShadowFilterInput {
   float2 uv;             // map coordinates in [0,1] of the layer (D3D: v = 0 is the top row)
@@ -90,7 +100,7 @@ ShadowFilterFrame ShadowFilterSetup(ShadowFilterInput i) {
   // Receiver-plane bias makes each tap's reference exact at the tap, but a bilinear tap compares
   // it with texel centres up to one texel away in each axis (gathercmp: half a texel), where the
   // receiver plane lies lower by up to this much; without it a tilted plane still has acne.
-  f.reference = i.depth - dot(abs(i.depthGradient), i.texelSize);
+  f.reference = i.depth - min(dot(abs(i.depthGradient), i.texelSize), RECEIVER_PLANE_MAX_FOOTPRINT);
   return f;
 }
 

@@ -9,6 +9,12 @@
 // compares against the receiver's plane, from the screen derivatives of the map coordinates after
 // the divide (the warp is not affine, but over a pixel's footprint it nearly is); where
 // neighbouring pixels read different cascades the derivatives are wrong for those pixels only.
+// The warps keep their rasterizer (or linear) slope bias under the receiver plane, so its
+// footprint term can be bounded: 0.002 of the cascade's depth range. Unbounded, it leaked light
+// under the capitals of ShadowColumns lit from overhead (gamma 90, 3x3 box: psm 3.86 %
+// misclassified, 0.52 % without the receiver plane); bounded, 0.41 % (test:
+// ReceiverPlaneBiasDoesNotLeakOnSteepReceivers).
+#define RECEIVER_PLANE_MAX_FOOTPRINT 0.002
 #include "common/frame.hlsli"
 #include "common/shadow-lookup.hlsli"
 #include "common/shadow-filter.hlsli"

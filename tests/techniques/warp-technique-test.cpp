@@ -100,6 +100,56 @@ TEST_P(WarpTechniqueTest, FiltersAndReceiverPlaneBiasKeepTheShadow) {
   }
 }
 
+// Receiver-plane bias on a steep receiver under a small flat occluder: a post under a wider cap,
+// the light 4 degrees off vertical, so the post's lit-facing side (N.L = sin 4 = 0.07) lies in the
+// cap's shadow all the way down (the overhang of 1 reaches 1 / tan 4 = 14 below the cap). The
+// receiver's slope is steep and the cap's flat: with the footprint term unbounded (a full texel
+// of the receiver's slope) 62 to 70 of the side's 1,251 pixels near the cap were lit in 5 of the
+// 6 cases; bounded (RECEIVER_PLANE_MAX_FOOTPRINT in shaders-hlsl/warps/shadow.hlsli), none.
+TEST_P(WarpTechniqueTest, ReceiverPlaneBiasDoesNotLeakOnSteepReceivers) {
+  const uint32_t W = 128, H = 128;
+  scene::Scene s;
+  s.name = "capped-post";
+  uint32_t plane = s.addMesh(scene::MakePlane(1));
+  uint32_t box = s.addMesh(scene::MakeBox());
+  const glm::vec3 postMin(-0.5f, 0.0f, -0.5f), postMax(0.5f, 4.0f, 0.5f), capMin(-1.5f, 4.0f, -1.5f), capMax(1.5f, 4.3f, 1.5f);
+  auto addBox = [&](glm::vec3 lo, glm::vec3 hi) {
+    s.addInstance(box, glm::scale(glm::translate(glm::mat4(1.0f), (lo + hi) * 0.5f), hi - lo), glm::vec3(0.8f));
+  };
+  s.addInstance(plane, glm::scale(glm::mat4(1.0f), glm::vec3(20, 1, 20)), glm::vec3(0.8f));
+  addBox(postMin, postMax);
+  addBox(capMin, capMax);
+  s.camera.position = {7.0f, 3.0f, 3.0f};
+  s.camera.target = {0.0f, 2.0f, 0.0f};
+  s.camera.fovY = glm::radians(45.0f);
+  s.camera.nearZ = 1.0f;
+  s.camera.farZ = 40.0f;
+  const float tilt = glm::radians(4.0f);
+  s.light.direction = glm::vec3(-std::sin(tilt), -std::cos(tilt), 0.0f);
+  s.finalize();
+  const glm::vec3 toLight = s.light.towardsLight();
+  for (const char* warp : kWarps)
+    for (const char* depth : {"warped", "linear"}) {
+      std::string name = std::string("capped-post-") + warp + "-" + depth;
+      SCOPED_TRACE(name);
+      std::unique_ptr<tech::Renderer> r = MakeRenderer(warp, s, W, H, {{"depth", depth}, {"filter", "box"}, {"receiver_plane", "1"}}, true);
+      r->RenderFrame(s.camera, s.light, tech::LitPass::Lab);
+      tech::LabBuffers lab = r->ReadLab();
+      int side = 0, leaked = 0;
+      for (size_t i = 0; i < lab.size(); ++i) {
+        glm::vec3 p(lab.position[i]);
+        // The post's +x face, away from its edges and from the cap by more than a texel or two.
+        if (!lab.receiving(i) || std::abs(p.x - postMax.x) > 1e-3f || std::abs(p.z) > 0.4f || p.y < 0.2f || p.y > 3.9f) continue;
+        ASSERT_GE(RayBox(p + toLight * 1e-3f, toLight, capMin, capMax), 0.0f) << "the whole side is in the cap's shadow";
+        ++side;
+        leaked += lab.visibility[i] > 0.5f;
+      }
+      EXPECT_GT(side, 300);
+      EXPECT_EQ(leaked, 0) << "of " << side << " pixels of the post's shadowed side";
+      if (leaked) WritePng(TestOutputDir() / (name + ".png"), W, H, lab.color.data());
+    }
+}
+
 // The lab's lookup is the texel ToTexel computes on the CPU, in the cascade interval selection
 // picks, and every receiving pixel reads a map.
 TEST_P(WarpTechniqueTest, LookupReadsWhereTheCpuFitSays) {
