@@ -247,6 +247,81 @@ TEST_P(WarpTechniqueTest, SingularConfigurationsRenderWithoutNanAndWithTheShadow
   }
 }
 
+// The fallback band on the GPU: the light turns from 3 to 25 degrees off the view axis (from
+// behind the viewer), through PSM's and TSM's fade (5 to 20 degrees) and LiSPSM's sin(gamma)
+// weakening, one degree per frame. At every frame the floor's shadow is right and no lookup is
+// NaN. Between frames, the texel each rendered surface point reads (the lab's lookup; 95th
+// percentile over the pixels) moves: by up to 36 texels a degree where TSM's warp fades in, which
+// is the transition spread over the band, not a pop. A pop is concentrated at one light
+// direction and survives refining the step (as in WarpContinuity.NoPopThroughTheFallbackBand on
+// the CPU): the step that moves most is cut into 8 and no eighth may carry more than 35 % of its
+// move (a smooth change puts about 1/8 in each). A hard switch to the uniform map would put the
+// whole jump between the warp and the switched-off warp (30 to 177 texels at 12 degrees here) into
+// one eighth.
+TEST_P(WarpTechniqueTest, NoPopThroughTheFallbackBandOnTheGpu) {
+  const uint32_t W = 96, H = 96;
+  scene::Scene s = FloatingBox(true);
+  const glm::vec3 forward = s.camera.forward();
+  const glm::vec3 side = glm::normalize(glm::cross(forward, glm::vec3(0, 1, 0)));
+  auto lightAt = [&](float degrees) {
+    scene::DirectionalLight l = s.light;
+    l.direction = glm::vec3(glm::rotate(glm::mat4(1.0f), glm::radians(-degrees), side) * glm::vec4(forward, 0.0f));
+    return l;
+  };
+  // The 95th percentile of the texel distance between two lookups, over the pixels both map.
+  auto move = [](const tech::LabBuffers& a, const tech::LabBuffers& b) {
+    std::vector<float> d;
+    for (size_t i = 0; i < a.size(); ++i)
+      if (a.receiving(i) && b.receiving(i) && a.lookup[i].x >= 0 && b.lookup[i].x >= 0)
+        d.push_back(glm::length(glm::vec2(a.lookup[i].y - b.lookup[i].y, a.lookup[i].z - b.lookup[i].z)));
+    if (d.empty()) return 0.0f;
+    std::nth_element(d.begin(), d.begin() + d.size() * 95 / 100, d.end());
+    return d[d.size() * 95 / 100];
+  };
+  const std::map<std::string, std::map<std::string, std::string>> switchedOff = {
+      {"psm", {{"slide_back", "1000000"}}}, {"lispsm", {{"n_scale", "1000000"}}}, {"tsm", {{"focus", "0"}}}};
+  for (const char* warp : kWarps) {
+    SCOPED_TRACE(warp);
+    std::unique_ptr<tech::Renderer> r = MakeRenderer(warp, s, W, H, {}, true);
+    auto render = [&](float degrees) {
+      scene::Scene lit = s;
+      lit.light = lightAt(degrees);
+      r->RenderFrame(s.camera, lit.light, tech::LitPass::Lab);
+      tech::LabBuffers lab = r->ReadLab();
+      size_t nan = 0;
+      for (size_t i = 0; i < lab.size(); ++i)
+        if (lab.drawn(i) && (!std::isfinite(lab.visibility[i]) || !std::isfinite(lab.lookup[i].y + lab.lookup[i].z))) ++nan;
+      EXPECT_EQ(nan, 0u) << degrees << " degrees";
+      Comparison c = CompareWithAnalytic(lab.color, AnalyticFloor(lit, W, H), W, H, 2);
+      EXPECT_EQ(c.wrong, 0) << degrees << " degrees";
+      return lab;
+    };
+    std::unique_ptr<tech::Renderer> off = MakeRenderer(warp, s, W, H, switchedOff.at(warp), true);
+    off->RenderFrame(s.camera, lightAt(12.0f), tech::LitPass::Lab);
+    const float jump = move(render(12.0f), off->ReadLab());
+    EXPECT_GT(jump, 16.0f) << "a hard switch at 12 degrees would be a visible jump";
+
+    tech::LabBuffers previous = render(3.0f);
+    float largest = 0.0f;
+    int largestAt = 3;
+    for (int g = 4; g <= 25; ++g) {
+      tech::LabBuffers lab = render(float(g));
+      float m = move(lab, previous);
+      if (m > largest) largest = m, largestAt = g - 1;
+      previous = std::move(lab);
+    }
+    previous = render(float(largestAt));
+    float eighth = 0.0f;
+    for (int j = 1; j <= 8; ++j) {
+      tech::LabBuffers lab = render(float(largestAt) + float(j) / 8.0f);
+      eighth = std::max(eighth, move(lab, previous));
+      previous = std::move(lab);
+    }
+    EXPECT_LT(eighth, 0.35f * largest) << "the step from " << largestAt << " degrees moves " << largest << " texels";
+    EXPECT_LT(largest, jump);
+  }
+}
+
 // Every parameter's lit pass and depth shaders create on this backend (one lighting variant).
 TEST_P(WarpTechniqueTest, ConfiguresWithEveryDepthModeAndReportsLayers) {
   for (const char* warp : kWarps)
