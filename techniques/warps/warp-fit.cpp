@@ -310,10 +310,40 @@ WarpFit FitWarp(const WarpInput& in, Warp warp, const WarpParams& params) {
   glm::dmat3 hi = glm::inverse(h);
   const glm::dvec2 ndc[4] = {{-1, 1}, {1, 1}, {1, -1}, {-1, -1}};
   for (int i = 0; i < 4; ++i) {
+    // q = (X, Y, 1) / w of the corner's preimage.
     glm::dvec3 q = hi * glm::dvec3(ndc[i], 1.0);
     fit.trapezoid[i] = glm::vec2(glm::dvec2(q) / q.z);
+    fit.trapezoidBounded = fit.trapezoidBounded && q.z > 0.0;
   }
   return fit;
+}
+
+bool MayCastInto(const WarpFit& fit, const scene::Bounds& worldBounds) {
+  if (worldBounds.empty()) return false;
+  glm::vec3 corners[8];
+  worldBounds.corners(corners);
+  float nearest = 3e38f;
+  for (const glm::vec3& c : corners) nearest = std::min(nearest, LinearDepth(fit, c));
+  if (nearest > 1.0f) return false;
+  if (!fit.trapezoidBounded) return true;
+  // Separating axes of a rectangle and a convex quadrilateral in the plane: the rectangle's two
+  // and the quadrilateral's four edge normals.
+  const scene::Bounds lv = worldBounds.transformed(fit.lightView);
+  const glm::vec2 rect[4] = {{lv.min.x, lv.min.y}, {lv.max.x, lv.min.y}, {lv.max.x, lv.max.y}, {lv.min.x, lv.max.y}};
+  auto separated = [&](glm::vec2 axis) {
+    float r0 = 3e38f, r1 = -3e38f, q0 = 3e38f, q1 = -3e38f;
+    for (int i = 0; i < 4; ++i) {
+      float a = glm::dot(axis, rect[i]), b = glm::dot(axis, fit.trapezoid[i]);
+      r0 = std::min(r0, a), r1 = std::max(r1, a), q0 = std::min(q0, b), q1 = std::max(q1, b);
+    }
+    return r1 < q0 || q1 < r0;
+  };
+  if (separated({1, 0}) || separated({0, 1})) return false;
+  for (int i = 0; i < 4; ++i) {
+    glm::vec2 e = fit.trapezoid[(i + 1) % 4] - fit.trapezoid[i];
+    if (separated({-e.y, e.x})) return false;
+  }
+  return true;
 }
 
 glm::vec3 ToTexel(const WarpFit& fit, const glm::vec3& world, float resolution) {

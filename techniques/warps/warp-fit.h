@@ -153,9 +153,20 @@ struct WarpFit {
   // Light-view x/y of the map's corners (TSM's trapezoid; a rectangle when uniform): top-left,
   // top-right, bottom-right, bottom-left (top = row 0 = B's near side).
   glm::vec2 trapezoid[4]{};
+  // Whether the trapezoid is the map's whole region: every corner of the square has a preimage
+  // with w > 0. Where one has not (PSM's blend can put the line w = 0 through the square), the
+  // region in the light view is unbounded and the corners above mean nothing.
+  bool trapezoidBounded = true;
 };
 
 WarpFit FitWarp(const WarpInput& input, Warp warp, const WarpParams& params = {});
+
+// Whether an object with these world bounds may cast a shadow into the fit's map: its shadow
+// footprint (the bounds' light-view x/y rectangle, conservative) meets the map's region in the
+// light view (the trapezoid: the 2D homography's preimage of the square), and its side nearest the
+// light is not beyond B's far side (linear depth <= 1). Conservative: false only for objects that
+// draw no texel the lookup of B can read.
+bool MayCastInto(const WarpFit& fit, const scene::Bounds& worldBounds);
 
 // World point -> texel coordinates (x right, y down, row 0 at the top) for a map `resolution`
 // texels wide and high, and the depth viewProj gives, after the divide by w.

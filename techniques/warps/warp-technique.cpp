@@ -108,8 +108,10 @@ void WarpTechnique::RenderShadows(DeviceContext& ctx, SceneDrawer& drawer, const
   VIEWPORT vp{0, 0, n, n, 0, 1};
   ctx.RSSetViewports(1, &vp);
   triangles_ = 0;
-  auto all = [](uint32_t) { return true; };
   for (int c = 0; c < settings_.cascades; ++c) {
+    // Only what can shadow this cascade's body: its map's trapezoid in the light view, not beyond
+    // the body's far side.
+    auto casts = [&](uint32_t i) { return MayCastInto(fits_[c], scene.instances[i].worldBounds); };
     ctx.OMSetRenderTargets(0, nullptr, dsvs_[c].get());
     ctx.ClearDepthStencilView(dsvs_[c].get(), CLEAR_DEPTH, 1.0f, 0);
     ctx.RSSetState(Mirrored(fits_[c]) ? mirroredRasterizer_.get() : rasterizer_.get());
@@ -118,9 +120,9 @@ void WarpTechnique::RenderShadows(DeviceContext& ctx, SceneDrawer& drawer, const
       ctx.UpdateSubresource(linearConstants_[c].get(), 0, nullptr, &lc, 0, 0);
       ctx.VSSetConstantBuffers(2, {linearConstants_[c].get()});
       ctx.PSSetConstantBuffers(2, {linearConstants_[c].get()});
-      triangles_ += drawer.DrawDepth(ctx, fits_[c].viewProj, all, {linearVs_.get(), linearPs_.get()});
+      triangles_ += drawer.DrawDepth(ctx, fits_[c].viewProj, casts, {linearVs_.get(), linearPs_.get()});
     } else {
-      triangles_ += drawer.DrawDepth(ctx, fits_[c].viewProj, all);
+      triangles_ += drawer.DrawDepth(ctx, fits_[c].viewProj, casts);
     }
   }
 }

@@ -387,5 +387,46 @@ TEST(WarpContinuity, NoPopThroughTheFallbackBand) {
   }
 }
 
+// Caster culling (MayCastInto) is conservative: a box with any point that lands in the map
+// (w > 0, inside the square, depth <= 1, i.e. what the rasterizer would write and a lookup of B
+// could read) is kept. Boxes of 1 to 30 m scattered over and beyond the field, every warp, four
+// light angles and cascade-sized bodies; the points tried are a 5x5x5 grid over each box. And it
+// culls: most boxes far from the body are dropped.
+TEST(WarpCulling, KeepsEveryBoxThatReachesTheMapAndDropsMostOthers) {
+  const scene::Camera cam = Cam({10, 12, 60}, {0, 0, 0});
+  uint32_t seed = 12345;
+  auto next = [&] {
+    seed = seed * 1664525u + 1013904223u;
+    return float(seed >> 8) / 16777216.0f;
+  };
+  int kept = 0, culled = 0;
+  for (float g : {30.0f, 90.0f, 135.0f, 170.0f})
+    for (float d1 : {20.0f, 150.0f})
+      for (Warp w : kWarps) {
+        WarpInput in = MakeWarpInput(cam, 16.0f / 9.0f, LightAt(cam, g, 20.0f), Field(), cam.nearZ, d1);
+        WarpFit fit = FitWarp(in, w);
+        for (int k = 0; k < 200; ++k) {
+          glm::vec3 c(next() * 600 - 300, next() * 40 - 10, next() * 600 - 300), half(next() * 15 + 0.5f, next() * 15 + 0.5f, next() * 15 + 0.5f);
+          scene::Bounds box;
+          box.extend(c - half);
+          box.extend(c + half);
+          bool reaches = false;
+          for (int i = 0; i <= 4 && !reaches; ++i)
+            for (int j = 0; j <= 4 && !reaches; ++j)
+              for (int l = 0; l <= 4 && !reaches; ++l) {
+                glm::vec3 p = box.min + (box.max - box.min) * glm::vec3(i, j, l) / 4.0f;
+                glm::vec4 q = fit.viewProj * glm::vec4(p, 1.0f);
+                reaches = q.w > 0 && std::abs(q.x) <= q.w && std::abs(q.y) <= q.w && LinearDepth(fit, p) <= 1.0f;
+              }
+          bool may = MayCastInto(fit, box);
+          if (reaches) EXPECT_TRUE(may) << Name(w) << " gamma " << g << " d1 " << d1 << " box " << k;
+          (may ? kept : culled) += 1;
+        }
+      }
+  RecordProperty("kept", kept);
+  RecordProperty("culled", culled);
+  EXPECT_GT(culled, kept) << "most of the boxes scattered over 600 m miss a body of 20 or 150 m";
+}
+
 }  // namespace
 }  // namespace sp::test
