@@ -97,6 +97,24 @@ TEST(HlslToolchain, ErrorNamesFileAndLine) {
   }
 }
 
+// Invalid HLSL that crashes glslang's parser (a global declaration list going on with a struct
+// type: glslang 11 segfaults in growGlobalUniformBlock; found by fuzz/fx-effect-fuzz.cpp). The
+// parser runs in a child process, so the crash is a CompileError naming the file, the caller
+// lives on, and the next compile works.
+TEST(HlslToolchain, ParserCrashIsACompileErrorNotACrash) {
+  const char* crashes = "struct S { float4 p; };\nfloat4 a, S i;\nfloat4 main() : SV_Target { return a; }\n";
+  try {
+    CompileHlsl(crashes, "ps_5_0", "main");
+    FAIL() << "expected a compile error";
+  } catch (const hlsl::CompileError& e) {
+    std::string what = e.what();
+    EXPECT_NE(what.find("crashed with signal"), std::string::npos) << what;
+    EXPECT_NE(what.find("glslang"), std::string::npos) << what;
+    ASSERT_FALSE(e.diagnostics().empty());
+  }
+  EXPECT_NO_THROW(CompileHlsl("float4 main() : SV_Target { return 1; }", "ps_5_0", "main"));
+}
+
 TEST(HlslToolchain, IncludesAndDefinesWorkLikeFxc) {
   fs::path dir = fs::path(SHADOWPORT_TEST_OUTPUT_DIR) / "include-test";
   fs::create_directories(dir / "sub");

@@ -18,6 +18,7 @@
 
 #include "cache.h"
 #include "compat/compat.h"
+#include "isolated-run.h"
 #include "spirv-edit.h"
 #include "toolchain.h"
 
@@ -357,48 +358,118 @@ static compat::Result PreprocessWithRewrites(const std::string& source, const st
 
 namespace {
 
-std::vector<uint32_t> RunGlslang(const std::string& source, const std::string& fileName, const CompileOptions& opt, ShaderStage stage,
-                                 const std::string& entry, Includer& includer, std::vector<Diagnostic>* warnings) {
-  compat::Result pre = PreprocessWithRewrites(source, fileName, opt, stage, entry, includer);
+// What glslang's parser, linker and SPIR-V generator make of a preprocessed source.
+struct ParseOutcome {
+  std::string failedCall;               // empty on success, else the step that failed ("glslang (link)")
+  std::vector<Diagnostic> diagnostics;  // the errors, or on success the warnings
+  std::string log;
+  std::vector<uint32_t> spirv;
+};
+
+ParseOutcome ParseToSpirv(const std::string& source, const std::string& fileName, ShaderStage stage, const std::string& entry,
+                          Includer& includer) {
+  ParseOutcome o;
   EShLanguage lang = LanguageOf(stage);
   glslang::TShader shader(lang);
-  const char* src = pre.source.c_str();
+  const char* src = source.c_str();
   const char* name = fileName.c_str();
-  int len = int(pre.source.size());
+  int len = int(source.size());
   shader.setStringsWithLengthsAndNames(&src, &len, &name, 1);
   ConfigureShader(shader, stage, entry);
   auto messages = kMessages;
 
   if (!shader.parse(GetDefaultResources(), 100, ENoProfile, false, false, messages, includer)) {
-    std::string log = std::string(shader.getInfoLog()) + shader.getInfoDebugLog();
-    throw CompileError("glslang", fileName + ":" + entry, ParseGlslangLog(log, fileName), log);
+    o.log = std::string(shader.getInfoLog()) + shader.getInfoDebugLog();
+    o.failedCall = "glslang", o.diagnostics = ParseGlslangLog(o.log, fileName);
+    return o;
   }
-  *warnings = ParseGlslangWarnings(std::string(shader.getInfoLog()), fileName);
+  o.diagnostics = ParseGlslangWarnings(std::string(shader.getInfoLog()), fileName);
   glslang::TProgram program;
   program.addShader(&shader);
   if (!program.link(messages) || !program.mapIO()) {
-    std::string log = program.getInfoLog();
-    throw CompileError("glslang (link)", fileName + ":" + entry, ParseGlslangLog(log, fileName), log);
+    o.log = program.getInfoLog();
+    o.failedCall = "glslang (link)", o.diagnostics = ParseGlslangLog(o.log, fileName);
+    return o;
   }
   UnconnectedInputs unconnected(entry + "(");
   program.getIntermediate(lang)->getTreeRoot()->traverse(&unconnected);
   if (!unconnected.names.empty()) {
-    std::string msg = "glslang does not connect the entry-point input '" + unconnected.names[0] +
-                      "' (it would read an undefined value); declare it as a member of an input struct instead";
-    throw CompileError("glslang", fileName + ":" + entry, {{fileName, 0, msg}}, msg);
+    o.log = "glslang does not connect the entry-point input '" + unconnected.names[0] +
+            "' (it would read an undefined value); declare it as a member of an input struct instead";
+    o.failedCall = "glslang", o.diagnostics = {{fileName, 0, o.log}};
+    return o;
   }
-  std::vector<uint32_t> spirv;
   glslang::SpvOptions spvOptions;
   spvOptions.disableOptimizer = true;  // we run spirv-opt ourselves, with known passes
   spvOptions.validate = false;
   spv::SpvBuildLogger logger;
-  glslang::GlslangToSpv(*program.getIntermediate(lang), spirv, &logger, &spvOptions);
+  glslang::GlslangToSpv(*program.getIntermediate(lang), o.spirv, &logger, &spvOptions);
   std::string msgs = logger.getAllMessages();
   if (msgs.find("error") != std::string::npos || msgs.find("Missing functionality") != std::string::npos) {
     // glslang exits 0 but writes invalid SPIR-V for HLSL features it cannot translate; report them.
-    throw CompileError("glslang (SPIR-V)", fileName + ":" + entry, {{fileName, 0, msgs}}, msgs);
+    o.log = msgs;
+    o.failedCall = "glslang (SPIR-V)", o.diagnostics = {{fileName, 0, msgs}};
   }
-  return spirv;
+  return o;
+}
+
+std::string Serialize(const ParseOutcome& o) {
+  std::string out;
+  isolation::PutString(out, o.failedCall);
+  isolation::PutString(out, o.log);
+  isolation::PutU32(out, uint32_t(o.diagnostics.size()));
+  for (const Diagnostic& d : o.diagnostics) {
+    isolation::PutString(out, d.file);
+    isolation::PutU32(out, uint32_t(d.line));
+    isolation::PutString(out, d.message);
+  }
+  isolation::PutString(out, std::string(reinterpret_cast<const char*>(o.spirv.data()), o.spirv.size() * 4));
+  return out;
+}
+
+bool Deserialize(const std::string& bytes, ParseOutcome* o) {
+  isolation::ByteReader r(bytes);
+  o->failedCall = r.String();
+  o->log = r.String();
+  uint32_t n = r.U32();
+  for (uint32_t i = 0; i < n && r.ok(); ++i) {
+    Diagnostic d;
+    d.file = r.String();
+    d.line = int(r.U32());
+    d.message = r.String();
+    o->diagnostics.push_back(std::move(d));
+  }
+  std::string words = r.String();
+  if (!r.ok() || words.size() % 4) return false;
+  o->spirv.resize(words.size() / 4);
+  std::memcpy(o->spirv.data(), words.data(), words.size());
+  return true;
+}
+
+// A source takes glslang well under a second; a sanitizer build a few. More is a hang.
+constexpr unsigned kParserTimeoutSeconds = 120;
+
+std::vector<uint32_t> RunGlslang(const std::string& source, const std::string& fileName, const CompileOptions& opt, ShaderStage stage,
+                                 const std::string& entry, Includer& includer, std::vector<Diagnostic>* warnings) {
+  // The preprocessor and the rewrites run here: the includer records the files read (the cache's
+  // dependencies), which a child could not hand back.
+  compat::Result pre = PreprocessWithRewrites(source, fileName, opt, stage, entry, includer);
+  // glslang's parser crashes on some invalid HLSL (a global declaration list that goes on with a
+  // struct type, `float4 a, S b;`, segfaults glslang 11 in growGlobalUniformBlock: found by
+  // fuzz/fx-effect-fuzz.cpp), so it runs in a child process; see isolated-run.h.
+  const std::string object = fileName + ":" + entry;
+  isolation::IsolatedResult r =
+      isolation::RunIsolated([&] { return Serialize(ParseToSpirv(pre.source, fileName, stage, entry, includer)); }, kParserTimeoutSeconds);
+  ParseOutcome o;
+  if (!r.completed || !Deserialize(r.bytes, &o)) {
+    std::string msg = "the HLSL parser (glslang) " + (r.failure.empty() ? std::string("sent back a malformed result") : r.failure) +
+                      " on this source instead of reporting an error. glslang does not validate HLSL, so this is most likely a "
+                      "syntax error it does not catch: check the source, or compile it with fxc to have it named";
+    throw CompileError("glslang", object, {{fileName, 0, msg}}, r.failure);
+  }
+  if (!o.failedCall.empty()) throw CompileError(o.failedCall, object, std::move(o.diagnostics), o.log);
+  *warnings = std::move(o.diagnostics);
+  return std::move(o.spirv);
 }
 
 struct ToolMessages {
