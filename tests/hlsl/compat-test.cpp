@@ -174,6 +174,21 @@ TEST(D3D11Compat, DeepNestingIsAnErrorNotACrash) {
   EXPECT_TRUE(Contains(d.message, "nested more than 512 levels")) << d.message;
 }
 
+// Unbalanced brackets are refused before any rewrite reads the tokens, at the line of the bracket
+// without a partner (an unmatched ']' in front of a for loop once sent the for-loop rewrite past
+// the end of the tokens: found by fuzz/hlsl-preprocess-fuzz.cpp, its input is a seed there now).
+TEST(D3D11Compat, UnbalancedBracketsAreRefusedWithTheirLine) {
+  hlsl::Diagnostic d = FirstError("float4 main(float4 p : POSITION) : SV_Position\n{\n  ] for (int i = 0; i < 2; ++i) p += 1;\n  return p;\n}\n");
+  EXPECT_EQ(d.line, 3);
+  EXPECT_TRUE(Contains(d.message, "']' without a matching '['")) << d.message;
+  d = FirstError("float4 main() : SV_Target {\n  return float4(1, 2, 3, 4;\n}\n");
+  EXPECT_EQ(d.line, 2);
+  EXPECT_TRUE(Contains(d.message, "'(' closed by '}'")) << d.message;
+  d = FirstError("float4 main() : SV_Target {\n  return 1;\n");
+  EXPECT_EQ(d.line, 1);
+  EXPECT_TRUE(Contains(d.message, "'{' is never closed")) << d.message;
+}
+
 // ---- each construct executed on both backends ----------------------------------------------------
 
 class D3D11CompatRun : public BackendTest {

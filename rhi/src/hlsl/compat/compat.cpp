@@ -34,16 +34,28 @@ const std::vector<Rewrite>& Rewrites() {
 // A limit far above what real shaders nest turns that crash into a message.
 constexpr int kMaxNesting = 512;
 
+// Also refuses unbalanced brackets, with the line of the first one that has no partner: such a
+// source is not HLSL, and every rewrite relies on Source::Matching finding a partner (an
+// unmatched ']' before a for loop once sent the for-loop rewrite past the end of the tokens:
+// found by fuzz/hlsl-preprocess-fuzz.cpp).
 void CheckNesting(const Source& s) {
-  int depth = 0;
+  std::vector<size_t> open;
   for (size_t i = 0; i < s.size(); ++i) {
     if (s[i].Is("(") || s[i].Is("[") || s[i].Is("{")) {
-      if (++depth > kMaxNesting)
+      open.push_back(i);
+      if (open.size() > size_t(kMaxNesting))
         s.Fail(i, "brackets nested more than " + std::to_string(kMaxNesting) + " levels deep (the parser is recursive); simplify the expression");
     } else if (s[i].Is(")") || s[i].Is("]") || s[i].Is("}")) {
-      --depth;
+      const char* want = s[i].Is(")") ? "(" : s[i].Is("]") ? "[" : "{";
+      bool anyOpen = false;
+      for (size_t o : open) anyOpen = anyOpen || s[o].Is(want);
+      if (!anyOpen) s.Fail(i, "'" + s[i].text + "' without a matching '" + want + "'");
+      if (!s[open.back()].Is(want))
+        s.Fail(open.back(), "'" + s[open.back()].text + "' closed by '" + s[i].text + "' (line " + std::to_string(s[i].line) + ")");
+      open.pop_back();
     }
   }
+  if (!open.empty()) s.Fail(open.back(), "'" + s[open.back()].text + "' is never closed");
 }
 
 Result Apply(const std::string& preprocessed, const std::string& mainFile, const std::string& entryPoint) {
