@@ -99,8 +99,8 @@ TEST(HlslToolchain, ErrorNamesFileAndLine) {
 
 // Invalid HLSL that crashes glslang's parser (a global declaration list going on with a struct
 // type: glslang 11 segfaults in growGlobalUniformBlock; found by fuzz/fx-effect-fuzz.cpp). The
-// parser runs in a child process, so the crash is a CompileError naming the file, the caller
-// lives on, and the next compile works.
+// parser runs in a child process, so the crash is a CompileError naming the file and the line
+// (bisected), the caller lives on, and the next compile works.
 TEST(HlslToolchain, ParserCrashIsACompileErrorNotACrash) {
   const char* crashes = "struct S { float4 p; };\nfloat4 a, S i;\nfloat4 main() : SV_Target { return a; }\n";
   try {
@@ -111,6 +111,8 @@ TEST(HlslToolchain, ParserCrashIsACompileErrorNotACrash) {
     EXPECT_NE(what.find("crashed with signal"), std::string::npos) << what;
     EXPECT_NE(what.find("glslang"), std::string::npos) << what;
     ASSERT_FALSE(e.diagnostics().empty());
+    // The line it crashed on, found by bisecting the source.
+    EXPECT_EQ(e.diagnostics()[0].line, 2) << what;
   }
   EXPECT_NO_THROW(CompileHlsl("float4 main() : SV_Target { return 1; }", "ps_5_0", "main"));
 }

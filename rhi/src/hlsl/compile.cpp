@@ -449,6 +449,48 @@ bool Deserialize(const std::string& bytes, ParseOutcome* o) {
 // A source takes glslang well under a second; a sanitizer build a few. More is a hang.
 constexpr unsigned kParserTimeoutSeconds = 120;
 
+// Where glslang crashed: the crash happens while it parses one line, and any prefix of the text
+// that includes that line ends in a crash too (a prefix cut after it only adds an error at its
+// end, after the crash). So the shortest crashing prefix of whole lines, found by bisection (a
+// dozen parses for a thousand lines), ends at that line; the #line directives of the
+// preprocessed text give it back in the user's file. {"", 0} when it cannot be found.
+Diagnostic LocateParserCrash(const std::string& text, const std::string& fileName, ShaderStage stage, const std::string& entry,
+                             Includer& includer) {
+  std::vector<size_t> lineEnds;  // byte offset one past each line
+  for (size_t i = 0; i < text.size(); ++i)
+    if (text[i] == '\n') lineEnds.push_back(i + 1);
+  if (lineEnds.empty() || lineEnds.back() != text.size()) lineEnds.push_back(text.size());
+  auto crashes = [&](size_t lines) {
+    std::string prefix = text.substr(0, lineEnds[lines - 1]);
+    isolation::IsolatedResult r =
+        isolation::RunIsolated([&] { return Serialize(ParseToSpirv(prefix, fileName, stage, entry, includer)); }, kParserTimeoutSeconds);
+    return r.signal != 0 && !r.timedOut;
+  };
+  size_t lo = 0, hi = lineEnds.size();  // the first lo lines do not crash it; the first hi do
+  if (!crashes(hi)) return {"", 0, ""};
+  while (hi - lo > 1) {
+    size_t mid = (lo + hi) / 2;
+    (crashes(mid) ? hi : lo) = mid;
+  }
+  // Line hi of the text, in the user's terms: `#line N "file"` makes the next line N of file.
+  Diagnostic d{fileName, 0, ""};
+  int line = 0;
+  size_t start = 0;
+  for (size_t k = 0; k < hi; ++k) {
+    std::string l = text.substr(start, lineEnds[k] - start);
+    start = lineEnds[k];
+    ++line;
+    std::smatch m;
+    static const std::regex kLine(R"re(^\s*#\s*line\s+(\d+)(?:\s+"([^"]*)")?)re");
+    if (k + 1 < hi && std::regex_search(l, m, kLine)) {
+      line = std::stoi(m[1]) - 1;
+      if (m[2].matched) d.file = m[2];
+    }
+  }
+  d.line = line;
+  return d;
+}
+
 std::vector<uint32_t> RunGlslang(const std::string& source, const std::string& fileName, const CompileOptions& opt, ShaderStage stage,
                                  const std::string& entry, Includer& includer, std::vector<Diagnostic>* warnings) {
   // The preprocessor and the rewrites run here: the includer records the files read (the cache's
@@ -462,10 +504,14 @@ std::vector<uint32_t> RunGlslang(const std::string& source, const std::string& f
       isolation::RunIsolated([&] { return Serialize(ParseToSpirv(pre.source, fileName, stage, entry, includer)); }, kParserTimeoutSeconds);
   ParseOutcome o;
   if (!r.completed || !Deserialize(r.bytes, &o)) {
-    std::string msg = "the HLSL parser (glslang) " + (r.failure.empty() ? std::string("sent back a malformed result") : r.failure) +
-                      " on this source instead of reporting an error. glslang does not validate HLSL, so this is most likely a "
-                      "syntax error it does not catch: check the source, or compile it with fxc to have it named";
-    throw CompileError("glslang", object, {{fileName, 0, msg}}, r.failure);
+    Diagnostic where{fileName, 0, ""};
+    if (r.signal != 0 && !r.timedOut) where = LocateParserCrash(pre.source, fileName, stage, entry, includer);
+    if (where.file.empty()) where.file = fileName;
+    where.message = "the HLSL parser (glslang) " + (r.failure.empty() ? std::string("sent back a malformed result") : r.failure) +
+                    (where.line ? " on this line" : " on this source") +
+                    " instead of reporting an error. glslang does not validate HLSL, so this is most likely a syntax error it "
+                    "does not catch: check the line, or compile it with fxc to have it named";
+    throw CompileError("glslang", object, {where}, r.failure);
   }
   if (!o.failedCall.empty()) throw CompileError(o.failedCall, object, std::move(o.diagnostics), o.log);
   *warnings = std::move(o.diagnostics);
