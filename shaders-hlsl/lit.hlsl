@@ -1,4 +1,5 @@
-// The lit pass: Lambert diffuse with the shadow technique's visibility, plus ambient.
+// The lit pass: Lambert diffuse with the shadow technique's visibility, plus ambient, plus the
+// scene's local lights (common/local-lights.hlsli), shadowed where the technique provides it.
 // The renderer compiles it after the technique's lighting include, which defines
 //   float ShadowVisibility(float3 worldPos, float3 worldNormal, float4 svPosition)
 // returning 1 for lit and 0 for shadowed (filtered techniques return values in between), and,
@@ -7,6 +8,29 @@
 // SP_LAB=1 compiles the lab's variant: the same colour plus what the measurements need, one
 // render target each (techniques/renderer.h, LabBuffers). The normal variant is unchanged by it.
 #include "common/frame.hlsli"
+#include "common/local-lights.hlsli"
+
+// Local-light techniques define SP_LOCAL_SHADOWS and LocalShadowVisibility in their include
+// (1 = lit, 0 = shadowed, for local light `light`); without one, local lights are unshadowed.
+#ifndef SP_LOCAL_SHADOWS
+float LocalShadowVisibility(uint light, float3 worldPos, float3 worldNormal) { return 1.0; }
+#endif
+
+// The sum of every local light's contribution at a point (before albedo).
+float3 LocalLighting(float3 worldPos, float3 n) {
+  float3 sum = float3(0.0, 0.0, 0.0);
+  for (uint i = 0; i < localLightCount; ++i) {
+    LocalLightData l = localLights[i];
+    float3 v = l.position - worldPos;
+    float d = length(v);
+    float3 toLightL = v / max(d, 1e-6);
+    float ndotl = saturate(dot(n, toLightL));
+    float a = LocalRangeAttenuation(d, l.range) * LocalSpotFactor(l, -toLightL);
+    float visibility = LocalShadowVisibility(i, worldPos, n);
+    sum += l.color * (ndotl * a * visibility);
+  }
+  return sum;
+}
 
 #ifndef SP_LAB
 #define SP_LAB 0
@@ -41,7 +65,7 @@ float4 PSMain(VSOut i) : SV_Target {
   // Unconditionally, in uniform control flow: lookups may take derivatives (csm's receiver plane).
   // Where ndotl is 0 the visibility does not change the colour.
   float visibility = ShadowVisibility(i.worldPos, n, i.pos);
-  float3 color = albedo * (ambient + lightColor * ndotl * visibility);
+  float3 color = albedo * (ambient + lightColor * ndotl * visibility + LocalLighting(i.worldPos, n));
   return float4(color, 1.0);
 }
 
@@ -76,7 +100,7 @@ LabOut PSMain(VSOut i) {
   }
   LabOut o;
   // The same expression as the normal variant, so the colour is the same.
-  o.color = float4(albedo * (ambient + lightColor * ndotl * visibility), 1.0);
+  o.color = float4(albedo * (ambient + lightColor * ndotl * visibility + LocalLighting(i.worldPos, n)), 1.0);
   o.position = float4(i.worldPos, 1.0);
   o.normal = float4(n, ndotl);
   o.visibility = visibility;

@@ -1,5 +1,7 @@
 #include <sp/tech/renderer.h>
 
+#include "local-lights.h"
+
 #include <cstring>
 #include <stdexcept>
 
@@ -65,7 +67,9 @@ std::pair<ShaderBytecode, ShaderBytecode> Renderer::CompileLitShaders(const Tech
 Renderer::Renderer(Device& device, const scene::Scene& scene, std::unique_ptr<Technique> technique, uint32_t width, uint32_t height,
                    const RendererOptions& options)
     : device_(device), technique_(std::move(technique)), width_(width), height_(height) {
+  CheckLocalLights(scene);
   gpu_ = std::make_unique<scene::GpuScene>(device, scene);
+  localLights_ = MakeConstantBuffer(device, sizeof(LocalLightConstants), "LocalLights constants");
   drawer_ = std::make_unique<SceneDrawer>(device, *gpu_);
 
   TEXTURE2D_DESC cd;
@@ -128,6 +132,7 @@ FrameInputs Renderer::MakeFrame(const scene::Camera& camera, const scene::Direct
   f.cameraView = camera.view();
   f.cameraProj = camera.projection(float(width_) / float(height_));
   f.timer = timer_;
+  f.localLights = LocalLightsOf(gpu_->scene());
   return f;
 }
 
@@ -173,12 +178,15 @@ void Renderer::LitPassInternal(DeviceContext& ctx, const FrameInputs& f, LitPass
   ctx.RSSetState(litRasterizer_.get());
 
   drawer_->SetFrame(ctx, f.cameraProj * f.cameraView, &f);
+  LocalLightConstants local = PackLocalLights(f.localLights);
+  ctx.UpdateSubresource(localLights_.get(), 0, nullptr, &local, 0, 0);
   gpu_->BindGeometry(ctx);
   ctx.IASetInputLayout(litLayout_.get());
   ctx.VSSetShader(litVs_.get());
   ctx.PSSetShader(pass == LitPass::Lab ? labPs_.get() : litPs_.get());
   drawer_->BindConstants(ctx, ShaderStage::Vertex);
   drawer_->BindConstants(ctx, ShaderStage::Pixel);
+  ctx.PSSetConstantBuffers(6, {localLights_.get()});
   technique_->BindLighting(ctx);
   for (const scene::DrawItem& d : gpu_->draws()) {
     drawer_->SetObject(ctx, d.instance);

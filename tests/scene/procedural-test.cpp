@@ -142,6 +142,12 @@ bool SameScene(const Scene& a, const Scene& b) {
     if (a.pointLights[i].position != b.pointLights[i].position || a.pointLights[i].color != b.pointLights[i].color ||
         a.pointLights[i].range != b.pointLights[i].range)
       return false;
+  if (a.spotLights.size() != b.spotLights.size()) return false;
+  for (size_t i = 0; i < a.spotLights.size(); ++i)
+    if (a.spotLights[i].position != b.spotLights[i].position || a.spotLights[i].direction != b.spotLights[i].direction ||
+        a.spotLights[i].color != b.spotLights[i].color || a.spotLights[i].range != b.spotLights[i].range ||
+        a.spotLights[i].innerConeAngle != b.spotLights[i].innerConeAngle || a.spotLights[i].outerConeAngle != b.spotLights[i].outerConeAngle)
+      return false;
   if (a.cameraPaths.size() != b.cameraPaths.size()) return false;
   for (size_t i = 0; i < a.cameraPaths.size(); ++i) {
     const CameraPath &p = a.cameraPaths[i], &q = b.cameraPaths[i];
