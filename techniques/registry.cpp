@@ -12,6 +12,7 @@ std::unique_ptr<Technique> MakeSdsmTechnique();
 std::unique_ptr<Technique> MakePsmTechnique();
 std::unique_ptr<Technique> MakeLispsmTechnique();
 std::unique_ptr<Technique> MakeTsmTechnique();
+std::unique_ptr<Technique> MakeCubeTechnique();
 
 namespace {
 struct Entry {
@@ -26,6 +27,7 @@ const Entry kTechniques[] = {
     {"psm", MakePsmTechnique},
     {"lispsm", MakeLispsmTechnique},
     {"tsm", MakeTsmTechnique},
+    {"cube", MakeCubeTechnique},
 };
 }  // namespace
 

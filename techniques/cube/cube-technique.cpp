@@ -1,0 +1,150 @@
+// The cube technique: omnidirectional shadows of one point light in a TextureCube of depth (King,
+// "Shadow Mapping Algorithms"). Six 90-degree faces, one DSV per face, each storing planar window z
+// with the same near and far on every face, so the lit pass computes the reference depth from the
+// major axis alone (z = a + b / max(|x|, |y|, |z|)) and compares with SampleCmpLevelZero on the
+// TextureCube: seamless 2x2 hardware PCF across face edges. Casters are culled per face against
+// the face frustum; D3D11 rasterizer depth bias as in basic. The directional light is unshadowed.
+#include <stdexcept>
+
+#include "cube/cube-faces.h"
+#include <sp/tech/technique.h>
+
+namespace sp::tech {
+namespace {
+
+class CubeTechnique final : public Technique {
+ public:
+  std::string Name() const override { return "cube"; }
+
+  std::vector<ParamSpec> Params() const override {
+    return {
+        {ParamSpec::Int, "light", "the point light shadowed (index into the scene's point lights = local light index)", "0", 0, kMaxLocalLights - 1, {}},
+        {ParamSpec::Int, "resolution", "width and height of each cube face in texels", "512", 16, 8192, {}},
+        {ParamSpec::Float, "near", "near plane of every face, in world units (casters closer to the light are not drawn)", "0.05", 1e-4, 1e3, {}},
+        {ParamSpec::Int, "depth_bias", "D3D11 DepthBias (units of the depth format)", "200", -1e7, 1e7, {}},
+        {ParamSpec::Float, "slope_bias", "D3D11 SlopeScaledDepthBias", "2.0", -100, 100, {}},
+    };
+  }
+
+  void Configure(Device& device, const ParamValues& p) override {
+    light_ = uint32_t(p.getInt("light"));
+    resolution_ = uint32_t(p.getInt("resolution"));
+    near_ = p.getFloat("near");
+
+    TEXTURE2D_DESC td;
+    td.Width = td.Height = resolution_;
+    td.ArraySize = 6;
+    td.Format = FORMAT_R32_TYPELESS;
+    td.BindFlags = BIND_DEPTH_STENCIL | BIND_SHADER_RESOURCE;
+    td.MiscFlags = RESOURCE_MISC_TEXTURECUBE;
+    cube_ = device.CreateTexture2D(td);
+    cube_->SetDebugName("cube shadow map");
+    faces_ = MakeSliceDepthViews(device, cube_.get());
+    SHADER_RESOURCE_VIEW_DESC sd;
+    sd.Format = FORMAT_R32_FLOAT;
+    sd.ViewDimension = SRV_DIMENSION_TEXTURECUBE;
+    sd.TextureCube = {0, 1};
+    srv_ = device.CreateShaderResourceView(cube_.get(), &sd);
+
+    RASTERIZER_DESC rd;
+    // The faces' (s, t, major) bases are mirror images of a camera's, so winding flips between
+    // faces' conventions; draw both sides (open meshes cast from either side anyway).
+    rd.CullMode = CULL_NONE;
+    rd.FrontCounterClockwise = true;
+    rd.DepthBias = p.getInt("depth_bias");
+    rd.SlopeScaledDepthBias = p.getFloat("slope_bias");
+    rasterizer_ = device.CreateRasterizerState(rd);
+
+    SAMPLER_DESC smp;
+    smp.Filter = FILTER_COMPARISON_MIN_MAG_LINEAR_MIP_POINT;
+    smp.AddressU = smp.AddressV = smp.AddressW = TEXTURE_ADDRESS_CLAMP;
+    smp.ComparisonFunc = COMPARISON_LESS_EQUAL;
+    sampler_ = device.CreateSamplerState(smp);
+    constants_ = MakeConstantBuffer(device, sizeof(Constants), "CubeShadow constants");
+  }
+
+  void RenderShadows(DeviceContext& ctx, SceneDrawer& drawer, const FrameInputs& frame) override {
+    GpuTimer::Scope timed(frame.timer, ctx, "shadow");
+    size_t points = frame.scene->pointLights.size();
+    if (light_ >= points || light_ >= frame.localLights.size() || frame.localLights[light_].type != LocalLight::Point)
+      throw std::invalid_argument("cube: light=" + std::to_string(light_) + " but scene '" + frame.scene->name + "' has " + std::to_string(points) +
+                                  " point light(s)");
+    const LocalLight& l = frame.localLights[light_];
+    if (!(near_ < l.range))
+      throw std::invalid_argument("cube: near=" + std::to_string(near_) + " is not below the range of point light " + std::to_string(light_) + " (" +
+                                  std::to_string(l.range) + ")");
+    Constants c{l.position, cube::DepthA(near_, l.range), cube::DepthB(near_, l.range), float(resolution_), light_, l.range};
+    ctx.UpdateSubresource(constants_.get(), 0, nullptr, &c, 0, 0);
+
+    ShaderResourceView* none = nullptr;
+    ctx.PSSetShaderResources(0, 1, &none);
+    VIEWPORT vp{0, 0, float(resolution_), float(resolution_), 0, 1};
+    ctx.RSSetViewports(1, &vp);
+    ctx.RSSetState(rasterizer_.get());
+    ctx.OMSetDepthStencilState(nullptr, 0);
+    trianglesSubmitted_ = 0;
+    const std::vector<scene::Instance>& instances = frame.scene->instances;
+    for (int f = 0; f < 6; ++f) {
+      glm::mat4 viewProj = cube::FaceViewProj(f, l.position, near_, l.range);
+      ctx.OMSetRenderTargets(0, nullptr, faces_[f].get());
+      ctx.ClearDepthStencilView(faces_[f].get(), CLEAR_DEPTH, 1.0f, 0);
+      trianglesSubmitted_ += drawer.DrawDepth(ctx, viewProj, [&](uint32_t i) { return InFrustum(viewProj, instances[i].worldBounds); });
+    }
+  }
+
+  std::string LightingInclude() const override { return "cube/shadow.hlsli"; }
+
+  void BindLighting(DeviceContext& ctx) override {
+    ctx.PSSetConstantBuffers(2, {constants_.get()});
+    ctx.PSSetShaderResources(0, {srv_.get()});
+    ctx.PSSetSamplers(0, {sampler_.get()});
+  }
+
+  ShadowStats Stats() const override { return {uint64_t(resolution_) * resolution_ * 4 * 6, trianglesSubmitted_}; }
+  std::vector<ShadowLayer> Layers() const override { return std::vector<ShadowLayer>(6, {resolution_, resolution_}); }
+
+ private:
+  // A world box is outside a face's frustum when its 8 corners are all outside one clip plane
+  // (each plane is linear in the world point, so this is exact for the box).
+  static bool InFrustum(const glm::mat4& viewProj, const scene::Bounds& b) {
+    glm::vec3 corners[8];
+    b.corners(corners);
+    glm::vec4 c[8];
+    for (int i = 0; i < 8; ++i) c[i] = viewProj * glm::vec4(corners[i], 1.0f);
+    auto allOutside = [&](auto outside) {
+      for (const glm::vec4& p : c)
+        if (!outside(p)) return false;
+      return true;
+    };
+    return !(allOutside([](const glm::vec4& p) { return p.x > p.w; }) || allOutside([](const glm::vec4& p) { return p.x < -p.w; }) ||
+             allOutside([](const glm::vec4& p) { return p.y > p.w; }) || allOutside([](const glm::vec4& p) { return p.y < -p.w; }) ||
+             allOutside([](const glm::vec4& p) { return p.z < 0; }) || allOutside([](const glm::vec4& p) { return p.z > p.w; }));
+  }
+
+  // cbuffer CubeShadow in shaders-hlsl/cube/shadow.hlsli.
+  struct Constants {
+    glm::vec3 lightPosition;
+    float depthA;
+    float depthB;
+    float faceSize;
+    uint32_t lightIndex;
+    float range;
+  };
+  static_assert(sizeof(Constants) == 32);
+
+  uint32_t light_ = 0, resolution_ = 0;
+  float near_ = 0.05f;
+  Ref<Texture2D> cube_;
+  std::vector<Ref<DepthStencilView>> faces_;
+  Ref<ShaderResourceView> srv_;
+  Ref<RasterizerState> rasterizer_;
+  Ref<SamplerState> sampler_;
+  Ref<Buffer> constants_;
+  uint64_t trianglesSubmitted_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<Technique> MakeCubeTechnique() { return std::make_unique<CubeTechnique>(); }
+
+}  // namespace sp::tech
