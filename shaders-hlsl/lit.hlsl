@@ -74,8 +74,8 @@ float4 PSMain(VSOut i) : SV_Target {
 struct LabOut {
   float4 color : SV_Target0;       // as the normal variant
   float4 position : SV_Target1;    // world position; w = 1 (the clear leaves 0 where nothing was drawn)
-  float4 normal : SV_Target2;      // unit world normal; w = N.L, saturated, as shading uses it
-  float visibility : SV_Target3;   // ShadowVisibility for every pixel, facing the light or not
+  float4 normal : SV_Target2;      // unit world normal; w = N.L, saturated, of the judged light
+  float visibility : SV_Target3;   // the judged light's visibility for every pixel, facing it or not
   float4 lookup : SV_Target4;      // layer (-1: no map read), texel x, texel y, texels per pixel
   float4 albedo : SV_Target5;      // to shade the reference image the same way on the CPU
 };
@@ -88,6 +88,17 @@ LabOut PSMain(VSOut i) {
   float ndotl = saturate(dot(n, toLight));
   float visibility = ShadowVisibility(i.worldPos, n, i.pos);
   ShadowLookup l = ShadowLocate(i.worldPos, n);
+  // What the lab judges: the directional light, or the local light SP_LAB_LOCAL_LIGHT of a
+  // local-light technique (Technique::LabLocalLight): its N.L, 0 beyond its range (where it
+  // lights nothing), and its visibility.
+#ifdef SP_LAB_LOCAL_LIGHT
+  float3 toLab = localLights[SP_LAB_LOCAL_LIGHT].position - i.worldPos;
+  float labNdotl = length(toLab) < localLights[SP_LAB_LOCAL_LIGHT].range ? saturate(dot(n, normalize(toLab))) : 0.0;
+  float labVisibility = LocalShadowVisibility(SP_LAB_LOCAL_LIGHT, i.worldPos, n);
+#else
+  float labNdotl = ndotl;
+  float labVisibility = visibility;
+#endif
   // Texels per pixel: the square root of the map area, in texels, that the pixel's footprint
   // covers: |det J| of the 2x2 Jacobian of texel coordinates over screen x and y, with the layer
   // held at the pixel's own.
@@ -102,8 +113,8 @@ LabOut PSMain(VSOut i) {
   // The same expression as the normal variant, so the colour is the same.
   o.color = float4(albedo * (ambient + lightColor * ndotl * visibility + LocalLighting(i.worldPos, n)), 1.0);
   o.position = float4(i.worldPos, 1.0);
-  o.normal = float4(n, ndotl);
-  o.visibility = visibility;
+  o.normal = float4(n, labNdotl);
+  o.visibility = labVisibility;
   o.lookup = float4(l.layer, l.texel, texelsPerPixel);
   o.albedo = float4(albedo, 1.0);
   return o;

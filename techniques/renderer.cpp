@@ -54,6 +54,7 @@ std::pair<ShaderBytecode, ShaderBytecode> Renderer::CompileLitShaders(const Tech
   hlsl::CompileOptions o;
   o.defines = technique.LightingDefines();
   if (pass == LitPass::Lab) o.defines.push_back({"SP_LAB", "1"});
+  if (pass == LitPass::Lab && technique.LabLocalLight() >= 0) o.defines.push_back({"SP_LAB_LOCAL_LIGHT", std::to_string(technique.LabLocalLight())});
   o.includeDirs = {ShaderDirectory()};
   o.target = "vs_5_0";
   o.entryPoint = "VSMain";

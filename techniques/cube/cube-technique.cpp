@@ -102,6 +102,7 @@ class CubeTechnique final : public Technique {
 
   ShadowStats Stats() const override { return {uint64_t(resolution_) * resolution_ * 4 * 6, trianglesSubmitted_}; }
   std::vector<ShadowLayer> Layers() const override { return std::vector<ShadowLayer>(6, {resolution_, resolution_}); }
+  int LabLocalLight() const override { return int(light_); }
 
  private:
   // A world box is outside a face's frustum when its 8 corners are all outside one clip plane
