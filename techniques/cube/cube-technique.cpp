@@ -4,6 +4,11 @@
 // major axis alone (z = a + b / max(|x|, |y|, |z|)) and compares with SampleCmpLevelZero on the
 // TextureCube: seamless 2x2 hardware PCF across face edges. Casters are culled per face against
 // the face frustum; D3D11 rasterizer depth bias as in basic. The directional light is unshadowed.
+//
+// storage=radial: the variant for hardware without depth cube maps, to measure the difference: an
+// R32_FLOAT cube of light-to-caster distance (rendered with a D32 depth buffer per face), compared
+// in the shader on a 2x2 Gather with bilinear weights and a receiver slope bias (no rasterizer
+// bias reaches a colour target).
 #include <stdexcept>
 
 #include "cube/cube-faces.h"
@@ -22,7 +27,10 @@ class CubeTechnique final : public Technique {
         {ParamSpec::Int, "resolution", "width and height of each cube face in texels", "512", 16, 8192, {}},
         {ParamSpec::Float, "near", "near plane of every face, in world units (casters closer to the light are not drawn)", "0.05", 1e-4, 1e3, {}},
         {ParamSpec::Int, "depth_bias", "D3D11 DepthBias (units of the depth format)", "200", -1e7, 1e7, {}},
-        {ParamSpec::Float, "slope_bias", "D3D11 SlopeScaledDepthBias", "2.0", -100, 100, {}},
+        {ParamSpec::Float, "slope_bias", "D3D11 SlopeScaledDepthBias (storage=depth)", "2.0", -100, 100, {}},
+        {ParamSpec::Choice, "storage", "depth: planar window z in a depth cube, hardware comparison; radial: distance in an R32_FLOAT cube, compared in the shader", "depth", 0, 0, {"depth", "radial"}},
+        {ParamSpec::Float, "radial_bias", "storage=radial: constant bias in world units", "0.01", 0, 1e3, {}},
+        {ParamSpec::Float, "radial_slope_bias", "storage=radial: bias in texel footprints times tan(angle to the light), at most 10", "1.5", 0, 100, {}},
     };
   }
 
@@ -30,16 +38,39 @@ class CubeTechnique final : public Technique {
     light_ = uint32_t(p.getInt("light"));
     resolution_ = uint32_t(p.getInt("resolution"));
     near_ = p.getFloat("near");
+    radial_ = p.getChoice("storage") == "radial";
+    radialBias_ = p.getFloat("radial_bias");
+    radialSlope_ = p.getFloat("radial_slope_bias");
 
     TEXTURE2D_DESC td;
     td.Width = td.Height = resolution_;
     td.ArraySize = 6;
-    td.Format = FORMAT_R32_TYPELESS;
-    td.BindFlags = BIND_DEPTH_STENCIL | BIND_SHADER_RESOURCE;
+    td.Format = radial_ ? FORMAT_R32_FLOAT : FORMAT_R32_TYPELESS;
+    td.BindFlags = (radial_ ? BIND_RENDER_TARGET : BIND_DEPTH_STENCIL) | BIND_SHADER_RESOURCE;
     td.MiscFlags = RESOURCE_MISC_TEXTURECUBE;
     cube_ = device.CreateTexture2D(td);
-    cube_->SetDebugName("cube shadow map");
-    faces_ = MakeSliceDepthViews(device, cube_.get());
+    cube_->SetDebugName(radial_ ? "cube shadow map (radial distance)" : "cube shadow map");
+    if (radial_) {
+      for (uint32_t f = 0; f < 6; ++f) {
+        RENDER_TARGET_VIEW_DESC rv;
+        rv.Format = FORMAT_R32_FLOAT;
+        rv.ViewDimension = RTV_DIMENSION_TEXTURE2DARRAY;
+        rv.Texture2DArray = {0, f, 1};
+        faceRtvs_.push_back(device.CreateRenderTargetView(cube_.get(), &rv));
+      }
+      TEXTURE2D_DESC dd;
+      dd.Width = dd.Height = resolution_;
+      dd.Format = FORMAT_D32_FLOAT;
+      dd.BindFlags = BIND_DEPTH_STENCIL;
+      radialDepth_ = device.CreateTexture2D(dd);
+      radialDepth_->SetDebugName("cube radial pass depth");
+      faces_.push_back(device.CreateDepthStencilView(radialDepth_.get()));
+      ShaderBytecode vs = CompileTechniqueShader("cube/radial.hlsl", "vs_5_0", "VSMain");
+      radialVs_ = device.CreateVertexShader(vs);
+      radialPs_ = device.CreatePixelShader(CompileTechniqueShader("cube/radial.hlsl", "ps_5_0", "PSMain"));
+    } else {
+      faces_ = MakeSliceDepthViews(device, cube_.get());
+    }
     SHADER_RESOURCE_VIEW_DESC sd;
     sd.Format = FORMAT_R32_FLOAT;
     sd.ViewDimension = SRV_DIMENSION_TEXTURECUBE;
@@ -51,14 +82,16 @@ class CubeTechnique final : public Technique {
     // faces' conventions; draw both sides (open meshes cast from either side anyway).
     rd.CullMode = CULL_NONE;
     rd.FrontCounterClockwise = true;
-    rd.DepthBias = p.getInt("depth_bias");
-    rd.SlopeScaledDepthBias = p.getFloat("slope_bias");
+    if (!radial_) {
+      rd.DepthBias = p.getInt("depth_bias");
+      rd.SlopeScaledDepthBias = p.getFloat("slope_bias");
+    }
     rasterizer_ = device.CreateRasterizerState(rd);
 
     SAMPLER_DESC smp;
-    smp.Filter = FILTER_COMPARISON_MIN_MAG_LINEAR_MIP_POINT;
+    smp.Filter = radial_ ? FILTER_MIN_MAG_MIP_POINT : FILTER_COMPARISON_MIN_MAG_LINEAR_MIP_POINT;
     smp.AddressU = smp.AddressV = smp.AddressW = TEXTURE_ADDRESS_CLAMP;
-    smp.ComparisonFunc = COMPARISON_LESS_EQUAL;
+    smp.ComparisonFunc = radial_ ? COMPARISON_NEVER : COMPARISON_LESS_EQUAL;
     sampler_ = device.CreateSamplerState(smp);
     constants_ = MakeConstantBuffer(device, sizeof(Constants), "CubeShadow constants");
   }
@@ -73,7 +106,7 @@ class CubeTechnique final : public Technique {
     if (!(near_ < l.range))
       throw std::invalid_argument("cube: near=" + std::to_string(near_) + " is not below the range of point light " + std::to_string(light_) + " (" +
                                   std::to_string(l.range) + ")");
-    Constants c{l.position, cube::DepthA(near_, l.range), cube::DepthB(near_, l.range), float(resolution_), light_, l.range};
+    Constants c{l.position, cube::DepthA(near_, l.range), cube::DepthB(near_, l.range), float(resolution_), light_, l.range, radialBias_, radialSlope_, {}};
     ctx.UpdateSubresource(constants_.get(), 0, nullptr, &c, 0, 0);
 
     ShaderResourceView* none = nullptr;
@@ -86,13 +119,25 @@ class CubeTechnique final : public Technique {
     const std::vector<scene::Instance>& instances = frame.scene->instances;
     for (int f = 0; f < 6; ++f) {
       glm::mat4 viewProj = cube::FaceViewProj(f, l.position, near_, l.range);
-      ctx.OMSetRenderTargets(0, nullptr, faces_[f].get());
-      ctx.ClearDepthStencilView(faces_[f].get(), CLEAR_DEPTH, 1.0f, 0);
-      trianglesSubmitted_ += drawer.DrawDepth(ctx, viewProj, [&](uint32_t i) { return InFrustum(viewProj, instances[i].worldBounds); });
+      auto keep = [&](uint32_t i) { return InFrustum(viewProj, instances[i].worldBounds); };
+      if (radial_) {
+        RenderTargetView* rtv = faceRtvs_[f].get();
+        ctx.OMSetRenderTargets(1, &rtv, faces_[0].get());
+        const float far[4] = {3.0e38f, 0, 0, 0};  // nothing: lit at any distance
+        ctx.ClearRenderTargetView(rtv, far);
+        ctx.ClearDepthStencilView(faces_[0].get(), CLEAR_DEPTH, 1.0f, 0);
+        ctx.PSSetConstantBuffers(2, {constants_.get()});
+        trianglesSubmitted_ += drawer.DrawDepth(ctx, viewProj, keep, {radialVs_.get(), radialPs_.get()});
+      } else {
+        ctx.OMSetRenderTargets(0, nullptr, faces_[f].get());
+        ctx.ClearDepthStencilView(faces_[f].get(), CLEAR_DEPTH, 1.0f, 0);
+        trianglesSubmitted_ += drawer.DrawDepth(ctx, viewProj, keep);
+      }
     }
   }
 
   std::string LightingInclude() const override { return "cube/shadow.hlsli"; }
+  std::vector<hlsl::Define> LightingDefines() const override { return {{"SP_CUBE_RADIAL", radial_ ? "1" : "0"}}; }
 
   void BindLighting(DeviceContext& ctx) override {
     ctx.PSSetConstantBuffers(2, {constants_.get()});
@@ -100,7 +145,8 @@ class CubeTechnique final : public Technique {
     ctx.PSSetSamplers(0, {sampler_.get()});
   }
 
-  ShadowStats Stats() const override { return {uint64_t(resolution_) * resolution_ * 4 * 6, trianglesSubmitted_}; }
+  // The cube, and with storage=radial the depth buffer of its passes.
+  ShadowStats Stats() const override { return {uint64_t(resolution_) * resolution_ * 4 * (radial_ ? 7 : 6), trianglesSubmitted_}; }
   std::vector<ShadowLayer> Layers() const override { return std::vector<ShadowLayer>(6, {resolution_, resolution_}); }
   int LabLocalLight() const override { return int(light_); }
 
@@ -130,13 +176,20 @@ class CubeTechnique final : public Technique {
     float faceSize;
     uint32_t lightIndex;
     float range;
+    float radialBias, radialSlope;
+    float pad[2];
   };
-  static_assert(sizeof(Constants) == 32);
+  static_assert(sizeof(Constants) == 48);
 
   uint32_t light_ = 0, resolution_ = 0;
   float near_ = 0.05f;
-  Ref<Texture2D> cube_;
-  std::vector<Ref<DepthStencilView>> faces_;
+  bool radial_ = false;
+  float radialBias_ = 0, radialSlope_ = 0;
+  Ref<Texture2D> cube_, radialDepth_;
+  std::vector<Ref<DepthStencilView>> faces_;  // depth: one per face; radial: the passes' depth buffer
+  std::vector<Ref<RenderTargetView>> faceRtvs_;
+  Ref<VertexShader> radialVs_;
+  Ref<PixelShader> radialPs_;
   Ref<ShaderResourceView> srv_;
   Ref<RasterizerState> rasterizer_;
   Ref<SamplerState> sampler_;

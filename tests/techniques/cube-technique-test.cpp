@@ -44,7 +44,7 @@ TEST(CubeFaces, FaceMatricesFollowTheCubeMapFaceTable) {
 }
 
 class CubeTechniqueTest : public BackendTest {
- protected:
+ public:
   std::unique_ptr<tech::Renderer> MakeRenderer(const scene::Scene& s, uint32_t w, uint32_t h, const std::map<std::string, std::string>& params) {
     std::unique_ptr<tech::Technique> t = tech::CreateTechnique("cube");
     t->Configure(device(), tech::ParamValues::Parse("cube", t->Params(), params));
@@ -57,11 +57,22 @@ int EncodeSrgb8(double v) {
   return int(std::lround((v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1.0 / 2.4) - 0.055) * 255.0));
 }
 
-TEST_P(CubeTechniqueTest, SpheresAroundAPointLightCastTheirExactShadowsOnEveryFace) {
+// Renders the room from three cameras that together see all six faces' shadows and the edge
+// sphere's on both sides of its edge, and checks every pixel away from shadow edges.
+void CheckRoomShadows(CubeTechniqueTest& t, const std::map<std::string, std::string>& params);
+
+TEST_P(CubeTechniqueTest, SpheresAroundAPointLightCastTheirExactShadowsOnEveryFace) { CheckRoomShadows(*this, {{"resolution", "512"}}); }
+
+// The radial-distance variant (R32_FLOAT cube, compared in the shader) gives the same shadows.
+TEST_P(CubeTechniqueTest, RadialDistanceStorageCastsTheSameExactShadows) {
+  CheckRoomShadows(*this, {{"resolution", "512"}, {"storage", "radial"}});
+}
+
+void CheckRoomShadows(CubeTechniqueTest& t, const std::map<std::string, std::string>& params) {
   const uint32_t W = 160, H = 120;
   CubeRoom room = MakeCubeRoom();
   const scene::PointLight& pl = room.scene.pointLights[0];
-  std::unique_ptr<tech::Renderer> r = MakeRenderer(room.scene, W, H, {{"resolution", "512"}});
+  std::unique_ptr<tech::Renderer> r = t.MakeRenderer(room.scene, W, H, params);
   scene::Camera cams[3] = {room.scene.camera, room.scene.camera, room.scene.camera};
   cams[0].position = {4.2f, 5.5f, 4.2f}, cams[0].target = {-1.5f, 0.5f, -1.5f};   // floor, -X and -Z walls
   cams[1].position = {-4.2f, 0.6f, -4.2f}, cams[1].target = {1.5f, 4.0f, 1.5f};   // ceiling, +X and +Z walls
@@ -129,17 +140,21 @@ TEST_P(CubeTechniqueTest, BadLightChoicesAreErrors) {
 
 SP_INSTANTIATE_BACKEND_TESTS(CubeTechniqueTest);
 
-TEST(CubeTechniqueCrossBackend, RoomRendersIdenticallyOnBothBackends) {
+class CubeTechniqueCrossBackend : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(CubeTechniqueCrossBackend, RoomRendersIdenticallyOnBothBackends) {
   const uint32_t W = 160, H = 120;
   CubeRoom room = MakeCubeRoom();
-  CrossBackendFrame f = RenderOnBothBackends("cube", {{"resolution", "256"}}, room.scene, W, H);
-  size_t differing = CompareImages("cube-room", W, H, f.images[0].data(), f.images[1].data(), 0);
+  CrossBackendFrame f = RenderOnBothBackends("cube", {{"resolution", "256"}, {"storage", GetParam()}}, room.scene, W, H);
+  size_t differing = CompareImages(std::string("cube-room-") + GetParam(), W, H, f.images[0].data(), f.images[1].data(), 0);
   if (f.mesa) {
     EXPECT_EQ(differing, 0u) << "Vulkan and GL images differ on Mesa; see the heat map in " << TestOutputDir();
   } else {
     EXPECT_LT(differing, size_t(W * H / 200)) << "more than 0.5% of pixels differ across backends";
   }
 }
+
+INSTANTIATE_TEST_SUITE_P(Storage, CubeTechniqueCrossBackend, ::testing::Values("depth", "radial"));
 
 }  // namespace
 }  // namespace sp::test
