@@ -89,11 +89,13 @@ LabOut PSMain(VSOut i) {
   float visibility = ShadowVisibility(i.worldPos, n, i.pos);
   ShadowLookup l = ShadowLocate(i.worldPos, n);
   // What the lab judges: the directional light, or the local light SP_LAB_LOCAL_LIGHT of a
-  // local-light technique (Technique::LabLocalLight): its N.L, 0 beyond its range (where it
-  // lights nothing), and its visibility.
+  // local-light technique (Technique::LabLocalLight): its N.L, 0 where it lights nothing (beyond
+  // its range, outside a spot's outer cone), and its visibility.
 #ifdef SP_LAB_LOCAL_LIGHT
-  float3 toLab = localLights[SP_LAB_LOCAL_LIGHT].position - i.worldPos;
-  float labNdotl = length(toLab) < localLights[SP_LAB_LOCAL_LIGHT].range ? saturate(dot(n, normalize(toLab))) : 0.0;
+  LocalLightData labLight = localLights[SP_LAB_LOCAL_LIGHT];
+  float3 toLab = labLight.position - i.worldPos;
+  bool labReached = length(toLab) < labLight.range && LocalSpotFactor(labLight, -normalize(toLab)) > 0.0;
+  float labNdotl = labReached ? saturate(dot(n, normalize(toLab))) : 0.0;
   float labVisibility = LocalShadowVisibility(SP_LAB_LOCAL_LIGHT, i.worldPos, n);
 #else
   float labNdotl = ndotl;

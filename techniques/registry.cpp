@@ -13,6 +13,7 @@ std::unique_ptr<Technique> MakePsmTechnique();
 std::unique_ptr<Technique> MakeLispsmTechnique();
 std::unique_ptr<Technique> MakeTsmTechnique();
 std::unique_ptr<Technique> MakeCubeTechnique();
+std::unique_ptr<Technique> MakeSpotTechnique();
 
 namespace {
 struct Entry {
@@ -28,6 +29,7 @@ const Entry kTechniques[] = {
     {"lispsm", MakeLispsmTechnique},
     {"tsm", MakeTsmTechnique},
     {"cube", MakeCubeTechnique},
+    {"spot", MakeSpotTechnique},
 };
 }  // namespace
 

@@ -46,7 +46,7 @@ void ReadRows(DeviceContext& ctx, Texture2D* texture, Texture2D* staging, uint32
 
 }  // namespace
 
-std::pair<ShaderBytecode, ShaderBytecode> Renderer::CompileLitShaders(const Technique& technique, LitPass pass) {
+std::pair<ShaderBytecode, ShaderBytecode> Renderer::CompileLitShaders(const Technique& technique, LitPass pass, const scene::Scene* labScene) {
   // The lit pass is compiled after the technique's include, which defines ShadowVisibility().
   // The wrapper lives (virtually) in shaders-hlsl/ so relative includes resolve there.
   std::string source = "#include \"" + technique.LightingInclude() + "\"\n#include \"lit.hlsl\"\n";
@@ -54,7 +54,8 @@ std::pair<ShaderBytecode, ShaderBytecode> Renderer::CompileLitShaders(const Tech
   hlsl::CompileOptions o;
   o.defines = technique.LightingDefines();
   if (pass == LitPass::Lab) o.defines.push_back({"SP_LAB", "1"});
-  if (pass == LitPass::Lab && technique.LabLocalLight() >= 0) o.defines.push_back({"SP_LAB_LOCAL_LIGHT", std::to_string(technique.LabLocalLight())});
+  if (pass == LitPass::Lab && labScene && technique.LabLocalLight(*labScene) >= 0)
+    o.defines.push_back({"SP_LAB_LOCAL_LIGHT", std::to_string(technique.LabLocalLight(*labScene))});
   o.includeDirs = {ShaderDirectory()};
   o.target = "vs_5_0";
   o.entryPoint = "VSMain";
@@ -103,7 +104,7 @@ Renderer::Renderer(Device& device, const scene::Scene& scene, std::unique_ptr<Te
 
   if (options.lab) {
     // The lab variant shares the vertex shader: VSMain does not depend on SP_LAB.
-    labPs_ = device.CreatePixelShader(CompileLitShaders(*technique_, LitPass::Lab).second);
+    labPs_ = device.CreatePixelShader(CompileLitShaders(*technique_, LitPass::Lab, &scene).second);
     CreateLabTargets();
   }
 }

@@ -119,7 +119,7 @@ RunResult RunOne(const RunSpec& spec, eval::ReferenceCache& reference, const Pro
   // --- 2. Measurement: the lab's lit pass, read back and judged.
   // The directional light, or the local light a local-light technique is judged on.
   eval::ReferenceLight light = eval::ReferenceLight::FromScene(scene.light);
-  if (int k = tech.LabLocalLight(); k >= 0) {
+  if (int k = tech.LabLocalLight(scene); k >= 0) {
     std::vector<tech::LocalLight> local = tech::LocalLightsOf(scene);
     if (size_t(k) >= local.size())
       throw std::invalid_argument(r.technique + " is judged on local light " + std::to_string(k) + " but scene '" + scene.name + "' has " +

@@ -148,7 +148,7 @@ class CubeTechnique final : public Technique {
   // The cube, and with storage=radial the depth buffer of its passes.
   ShadowStats Stats() const override { return {uint64_t(resolution_) * resolution_ * 4 * (radial_ ? 7 : 6), trianglesSubmitted_}; }
   std::vector<ShadowLayer> Layers() const override { return std::vector<ShadowLayer>(6, {resolution_, resolution_}); }
-  int LabLocalLight() const override { return int(light_); }
+  int LabLocalLight(const scene::Scene&) const override { return int(light_); }  // point lights come first
 
  private:
   // A world box is outside a face's frustum when its 8 corners are all outside one clip plane

@@ -7,8 +7,12 @@
 #include <algorithm>
 #include <cmath>
 #include <glm/ext/matrix_transform.hpp>
+#include <array>
+#include <string>
 #include <vector>
 
+#include "backend-test.h"
+#include "cube/cube-faces.h"
 #include <sp/scene/scene.h>
 
 namespace sp::test {
@@ -118,6 +122,84 @@ inline std::vector<RoomPixel> AnalyticRoom(const CubeRoom& r, const scene::Camer
       }
     }
   return out;
+}
+
+// Three cameras that together see all six faces' shadows and the edge sphere's on both sides of
+// its edge: floor with the -X and -Z walls; ceiling with +X and +Z; the scene's camera on the
+// floor around the +X/-Y edge and the +X wall.
+inline std::vector<scene::Camera> RoomCameras(const CubeRoom& room) {
+  std::vector<scene::Camera> cams(3, room.scene.camera);
+  cams[0].position = {4.2f, 5.5f, 4.2f}, cams[0].target = {-1.5f, 0.5f, -1.5f};
+  cams[1].position = {-4.2f, 0.6f, -4.2f}, cams[1].target = {1.5f, 4.0f, 1.5f};
+  return cams;
+}
+
+inline int EncodeSrgb8(double v) {
+  v = std::clamp(v, 0.0, 1.0);
+  return int(std::lround((v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1.0 / 2.4) - 0.055) * 255.0));
+}
+
+// The room scene's one local light (its point light, or its spot light when it has one) at a
+// surface point, as common/local-lights.hlsli shades it (green channel, before albedo).
+inline double RoomLocalLight(const scene::Scene& s, glm::vec3 p, glm::vec3 n) {
+  glm::vec3 pos = s.spotLights.empty() ? s.pointLights[0].position : s.spotLights[0].position;
+  float range = s.spotLights.empty() ? s.pointLights[0].range : s.spotLights[0].range;
+  float color = s.spotLights.empty() ? s.pointLights[0].color.g : s.spotLights[0].color.g;
+  glm::dvec3 v = glm::dvec3(pos) - glm::dvec3(p);
+  double d = glm::length(v), q = d / range;
+  double cone = 1.0;
+  if (!s.spotLights.empty()) {
+    const scene::SpotLight& l = s.spotLights[0];
+    double cd = glm::dot(glm::normalize(glm::dvec3(l.direction)), -v / d);
+    double ci = std::cos(double(l.innerConeAngle)), co = std::cos(double(l.outerConeAngle));
+    double t = std::clamp((cd - co) / std::max(1e-3, ci - co), 0.0, 1.0);
+    cone = t * t;
+  }
+  return color * std::clamp(1 - q * q * q * q, 0.0, 1.0) / (d * d) * std::max(0.0, glm::dot(glm::dvec3(n), v) / d) * cone;
+}
+
+// Pixels checked, wrong and in shadow, and shadow pixels per cube face (of the direction from the
+// light) in all, and of the edge sphere's shadow.
+struct RoomCheck {
+  int checked = 0, wrong = 0, shadowed = 0;
+  std::array<int, 6> shadowPerFace{}, edgeShadowPerFace{};
+  void add(const RoomCheck& o) {
+    checked += o.checked, wrong += o.wrong, shadowed += o.shadowed;
+    for (int f = 0; f < 6; ++f) shadowPerFace[f] += o.shadowPerFace[f], edgeShadowPerFace[f] += o.edgeShadowPerFace[f];
+  }
+};
+
+// Compares a rendered RGBA8 image of the room with the analytic shadows: every room-surface pixel
+// at least one pixel away from a change of the expected answer (texel grid, 2x2 PCF) and lit
+// enough to tell lit from shadowed (16 sRGB levels) must be classified as the CPU says. Reports
+// the first failures and writes the image under TestOutputDir() when any pixel is wrong.
+inline RoomCheck CheckRoomImage(const CubeRoom& room, const scene::Camera& cam, const std::vector<uint8_t>& img, uint32_t W, uint32_t H) {
+  RoomCheck c;
+  std::vector<RoomPixel> expected = AnalyticRoom(room, cam, W, H);
+  for (uint32_t y = 1; y + 1 < H; ++y)
+    for (uint32_t x = 1; x + 1 < W; ++x) {
+      const RoomPixel& e = expected[y * W + x];
+      if (e.code != 0 && e.code != 1) continue;
+      bool nearEdge = false;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) nearEdge |= expected[(y + dy) * W + (x + dx)].code != e.code;
+      if (nearEdge) continue;
+      int lit = EncodeSrgb8(0.8 * (room.scene.light.ambient + RoomLocalLight(room.scene, e.surface, e.normal)));
+      int dark = EncodeSrgb8(0.8 * room.scene.light.ambient);
+      if (lit - dark < 16) continue;
+      int got = img[(y * W + x) * 4 + 1];
+      int shadow = std::abs(got - dark) < std::abs(got - lit) ? 1 : 0;
+      ++c.checked;
+      c.shadowed += e.code;
+      int face = tech::cube::FaceOf(e.surface - room.light);
+      if (e.code == 1) ++c.shadowPerFace[face];
+      if (e.code == 1 && e.occluder == int(room.edgeSphere)) ++c.edgeShadowPerFace[face];
+      if (shadow != e.code && ++c.wrong <= 5)
+        ADD_FAILURE() << "camera at " << cam.position.x << "," << cam.position.y << "," << cam.position.z << " pixel " << x << "," << y << " (face " << face
+                      << "): got " << got << ", expected " << (e.code ? "shadow " : "lit ") << (e.code ? dark : lit);
+    }
+  if (c.wrong) WritePng(TestOutputDir() / ("room-" + std::to_string(int(cam.position.x * 10)) + ".png"), W, H, img.data());
+  return c;
 }
 
 }  // namespace sp::test

@@ -52,11 +52,6 @@ class CubeTechniqueTest : public BackendTest {
   }
 };
 
-int EncodeSrgb8(double v) {
-  v = std::clamp(v, 0.0, 1.0);
-  return int(std::lround((v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1.0 / 2.4) - 0.055) * 255.0));
-}
-
 // Renders the room from three cameras that together see all six faces' shadows and the edge
 // sphere's on both sides of its edge, and checks every pixel away from shadow edges.
 void CheckRoomShadows(CubeTechniqueTest& t, const std::map<std::string, std::string>& params);
@@ -71,54 +66,19 @@ TEST_P(CubeTechniqueTest, RadialDistanceStorageCastsTheSameExactShadows) {
 void CheckRoomShadows(CubeTechniqueTest& t, const std::map<std::string, std::string>& params) {
   const uint32_t W = 160, H = 120;
   CubeRoom room = MakeCubeRoom();
-  const scene::PointLight& pl = room.scene.pointLights[0];
   std::unique_ptr<tech::Renderer> r = t.MakeRenderer(room.scene, W, H, params);
-  scene::Camera cams[3] = {room.scene.camera, room.scene.camera, room.scene.camera};
-  cams[0].position = {4.2f, 5.5f, 4.2f}, cams[0].target = {-1.5f, 0.5f, -1.5f};   // floor, -X and -Z walls
-  cams[1].position = {-4.2f, 0.6f, -4.2f}, cams[1].target = {1.5f, 4.0f, 1.5f};   // ceiling, +X and +Z walls
-  // cams[2]: the scene's camera, on the floor around the +X/-Y edge and the +X wall.
-  std::array<int, 6> shadowPerFace{}, edgeShadowPerFace{};
-  int checked = 0, wrong = 0, shadowed = 0;
-  for (int ci = 0; ci < 3; ++ci) {
-    r->RenderFrame(cams[ci], room.scene.light);
-    std::vector<uint8_t> img = r->ReadColor();
-    std::vector<RoomPixel> expected = AnalyticRoom(room, cams[ci], W, H);
-    int wrongHere = 0;
-    for (uint32_t y = 1; y + 1 < H; ++y)
-      for (uint32_t x = 1; x + 1 < W; ++x) {
-        const RoomPixel& e = expected[y * W + x];
-        if (e.code != 0 && e.code != 1) continue;
-        bool nearEdge = false;  // one pixel either side of any change (texel grid, 2x2 PCF)
-        for (int dy = -1; dy <= 1; ++dy)
-          for (int dx = -1; dx <= 1; ++dx) nearEdge |= expected[(y + dy) * W + (x + dx)].code != e.code;
-        if (nearEdge) continue;
-        // Lit and shadowed colours of this point (green channel), as local-lights.hlsli shades it.
-        glm::vec3 v = pl.position - e.surface;
-        double d = glm::length(v), q = d / pl.range;
-        double local = pl.color.g * std::clamp(1 - q * q * q * q, 0.0, 1.0) / (d * d) * std::max(0.0, double(glm::dot(e.normal, v)) / d);
-        int lit = EncodeSrgb8(0.8 * (room.scene.light.ambient + local)), dark = EncodeSrgb8(0.8 * room.scene.light.ambient);
-        if (lit - dark < 16) continue;  // too little light to tell
-        int got = img[(y * W + x) * 4 + 1];
-        int shadow = std::abs(got - dark) < std::abs(got - lit) ? 1 : 0;
-        ++checked;
-        shadowed += e.code;
-        int face = tech::cube::FaceOf(e.surface - pl.position);
-        if (e.code == 1) ++shadowPerFace[face];
-        if (e.code == 1 && e.occluder == int(room.edgeSphere)) ++edgeShadowPerFace[face];
-        if (shadow != e.code) {
-          ++wrong, ++wrongHere;
-          if (wrong <= 5) ADD_FAILURE() << "camera " << ci << " pixel " << x << "," << y << " (face " << face << "): got " << got << ", expected " << (e.code ? "shadow " : "lit ") << (e.code ? dark : lit);
-        }
-      }
-    if (wrongHere) WritePng(TestOutputDir() / ("room-" + std::to_string(ci) + ".png"), W, H, img.data());
+  RoomCheck total;
+  for (const scene::Camera& cam : RoomCameras(room)) {
+    r->RenderFrame(cam, room.scene.light);
+    total.add(CheckRoomImage(room, cam, r->ReadColor(), W, H));
   }
-  EXPECT_EQ(wrong, 0) << "of " << checked << " pixels checked";
-  EXPECT_GT(checked, 20000);
-  EXPECT_GT(shadowed, 2000);
-  for (int f = 0; f < 6; ++f) EXPECT_GT(shadowPerFace[f], 40) << "shadow pixels checked on face " << f;
+  EXPECT_EQ(total.wrong, 0) << "of " << total.checked << " pixels checked";
+  EXPECT_GT(total.checked, 20000);
+  EXPECT_GT(total.shadowed, 2000);
+  for (int f = 0; f < 6; ++f) EXPECT_GT(total.shadowPerFace[f], 40) << "shadow pixels checked on face " << f;
   // The edge sphere's shadow is checked on both sides of the +X/-Y edge.
-  EXPECT_GT(edgeShadowPerFace[0], 20);
-  EXPECT_GT(edgeShadowPerFace[3], 20);
+  EXPECT_GT(total.edgeShadowPerFace[0], 20);
+  EXPECT_GT(total.edgeShadowPerFace[3], 20);
 }
 
 TEST_P(CubeTechniqueTest, BadLightChoicesAreErrors) {

@@ -60,8 +60,10 @@ class Renderer {
   uint32_t width() const { return width_; }
   uint32_t height() const { return height_; }
 
-  // The lit pass's shaders for a technique (what RenderFrame uses); exposed for tests.
-  static std::pair<ShaderBytecode, ShaderBytecode> CompileLitShaders(const Technique& technique, LitPass pass = LitPass::Normal);
+  // The lit pass's shaders for a technique (what RenderFrame uses); exposed for tests. The lab
+  // variant judges the light Technique::LabLocalLight(*labScene) names (none: the directional one).
+  static std::pair<ShaderBytecode, ShaderBytecode> CompileLitShaders(const Technique& technique, LitPass pass = LitPass::Normal,
+                                                                     const scene::Scene* labScene = nullptr);
 
  private:
   struct LabTarget {

@@ -187,11 +187,12 @@ class Technique {
   virtual ShadowStats Stats() const = 0;
   // The layers ShadowLocate() can return, for the lab's utilization metric (valid after Configure).
   virtual std::vector<ShadowLayer> Layers() const = 0;
-  // The light the lab judges this technique on: -1 (every directional technique) the directional
-  // light; otherwise the local light (FrameInputs::localLights index) whose shadow ShadowLocate()
-  // reports. The lab's lit pass then writes that light's N.L (0 beyond its range) and
-  // LocalShadowVisibility() for it, and the bench traces the reference from its position.
-  virtual int LabLocalLight() const { return -1; }
+  // The light the lab judges this technique on in `scene`: -1 (every directional technique) the
+  // directional light; otherwise the local light (LocalLightsOf(scene) index) whose shadow
+  // ShadowLocate() reports. The lab's lit pass then writes that light's N.L (0 where it lights
+  // nothing: beyond its range, outside a spot's outer cone) and LocalShadowVisibility() for it,
+  // and the bench traces the reference from its position.
+  virtual int LabLocalLight(const scene::Scene& scene) const { return -1; }
 };
 
 // --- Registry (techniques/registry.cpp: one line per technique)
