@@ -1,6 +1,5 @@
-// The lit pass: Lambert diffuse with the shadow technique's visibility, plus ambient, plus the
-// scene's local lights (common/local-lights.hlsli), shadowed where the technique provides it.
-// The renderer compiles it after the technique's lighting include, which defines
+// The lit pass: Lambert diffuse with the shadow technique's visibility, plus ambient and the
+// local lights (common/local-lights.hlsli). Compiled after the technique's include, which defines
 //   float ShadowVisibility(float3 worldPos, float3 worldNormal, float4 svPosition)
 // returning 1 for lit and 0 for shadowed (filtered techniques return values in between), and,
 // for the lab, ShadowLocate and ShadowTexel (common/shadow-lookup.hlsli).
@@ -9,29 +8,6 @@
 // render target each (techniques/renderer.h, LabBuffers). The normal variant is unchanged by it.
 #include "common/frame.hlsli"
 #include "common/local-lights.hlsli"
-
-// Local-light techniques define SP_LOCAL_SHADOWS and LocalShadowVisibility in their include
-// (1 = lit, 0 = shadowed, for local light `light`); without one, local lights are unshadowed.
-#ifndef SP_LOCAL_SHADOWS
-float LocalShadowVisibility(uint light, float3 worldPos, float3 worldNormal) { return 1.0; }
-#endif
-
-// The sum of every local light's contribution at a point (before albedo).
-float3 LocalLighting(float3 worldPos, float3 n) {
-  float3 sum = float3(0.0, 0.0, 0.0);
-  for (uint i = 0; i < localLightCount; ++i) {
-    LocalLightData l = localLights[i];
-    float3 v = l.position - worldPos;
-    float d = length(v);
-    float3 toLightL = v / max(d, 1e-6);
-    float ndotl = saturate(dot(n, toLightL));
-    float a = LocalRangeAttenuation(d, l.range) * LocalSpotFactor(l, -toLightL);
-    float visibility = LocalShadowVisibility(i, worldPos, n);
-    sum += l.color * (ndotl * a * visibility);
-  }
-  return sum;
-}
-
 #ifndef SP_LAB
 #define SP_LAB 0
 #endif
