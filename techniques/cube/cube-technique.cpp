@@ -3,7 +3,8 @@
 // with the same near and far on every face, so the lit pass computes the reference depth from the
 // major axis alone (z = a + b / max(|x|, |y|, |z|)) and compares with SampleCmpLevelZero on the
 // TextureCube: seamless 2x2 hardware PCF across face edges. Casters are culled per face against
-// the face frustum; D3D11 rasterizer depth bias as in basic. The directional light is unshadowed.
+// the face frustum, and faces whose frustum does not meet the camera's are skipped (cull_faces);
+// D3D11 rasterizer depth bias as in basic. The directional light is unshadowed.
 //
 // storage=radial: the variant for hardware without depth cube maps, to measure the difference: an
 // R32_FLOAT cube of light-to-caster distance (rendered with a D32 depth buffer per face), compared
@@ -30,6 +31,7 @@ class CubeTechnique final : public Technique {
         {ParamSpec::Float, "slope_bias", "D3D11 SlopeScaledDepthBias (storage=depth)", "2.0", -100, 100, {}},
         {ParamSpec::Choice, "storage", "depth: planar window z in a depth cube, hardware comparison; radial: distance in an R32_FLOAT cube, compared in the shader", "depth", 0, 0, {"depth", "radial"}},
         {ParamSpec::Float, "radial_bias", "storage=radial: constant bias in world units", "0.01", 0, 1e3, {}},
+        {ParamSpec::Int, "cull_faces", "1: skip the faces whose frustum (widened by two texels, for the filter across edges) does not meet the camera's", "1", 0, 1, {}},
         {ParamSpec::Float, "radial_slope_bias", "storage=radial: bias in texel footprints times tan(angle to the light), at most 10", "1.5", 0, 100, {}},
     };
   }
@@ -41,6 +43,7 @@ class CubeTechnique final : public Technique {
     radial_ = p.getChoice("storage") == "radial";
     radialBias_ = p.getFloat("radial_bias");
     radialSlope_ = p.getFloat("radial_slope_bias");
+    cullFaces_ = p.getInt("cull_faces") != 0;
 
     TEXTURE2D_DESC td;
     td.Width = td.Height = resolution_;
@@ -117,9 +120,12 @@ class CubeTechnique final : public Technique {
     ctx.OMSetDepthStencilState(nullptr, 0);
     trianglesSubmitted_ = 0;
     const std::vector<scene::Instance>& instances = frame.scene->instances;
+    const glm::mat4 camera = frame.cameraProj * frame.cameraView;
     for (int f = 0; f < 6; ++f) {
       glm::mat4 viewProj = cube::FaceViewProj(f, l.position, near_, l.range);
-      auto keep = [&](uint32_t i) { return InFrustum(viewProj, instances[i].worldBounds); };
+      // A skipped face is still cleared (to lit), so no earlier frame's depths remain in it.
+      bool skip = cullFaces_ && !FaceMeetsCamera(f, l, camera);
+      auto keep = [&](uint32_t i) { return !skip && InFrustum(viewProj, instances[i].worldBounds); };
       if (radial_) {
         RenderTargetView* rtv = faceRtvs_[f].get();
         ctx.OMSetRenderTargets(1, &rtv, faces_[0].get());
@@ -168,6 +174,39 @@ class CubeTechnique final : public Technique {
              allOutside([](const glm::vec4& p) { return p.z < 0; }) || allOutside([](const glm::vec4& p) { return p.z > p.w; }));
   }
 
+  // Whether face f's frustum, widened by two texels each side (the seamless 2x2 filter reads one
+  // texel past an edge), may meet the camera's: false when the camera frustum's 8 corners lie
+  // outside one plane of the face frustum, or the face pyramid's 5 corners (light, far corners)
+  // outside one plane of the camera's (a conservative separating-plane test).
+  bool FaceMeetsCamera(int f, const LocalLight& l, const glm::mat4& camera) const {
+    const float widen = 1.0f + 4.0f / float(resolution_);
+    glm::mat4 face = cube::FaceViewProj(f, l.position, near_, l.range);
+    glm::mat4 inv = glm::inverse(camera);
+    glm::vec4 cam[8];
+    for (int i = 0; i < 8; ++i) {
+      glm::vec4 p = inv * glm::vec4(i & 1 ? 1.0f : -1.0f, i & 2 ? 1.0f : -1.0f, i & 4 ? 1.0f : 0.0f, 1.0f);
+      cam[i] = face * (p / p.w);
+    }
+    auto allOutside = [](const glm::vec4* c, int n, auto outside) {
+      for (int i = 0; i < n; ++i)
+        if (!outside(c[i])) return false;
+      return true;
+    };
+    if (allOutside(cam, 8, [&](const glm::vec4& p) { return p.x > widen * p.w; }) || allOutside(cam, 8, [&](const glm::vec4& p) { return p.x < -widen * p.w; }) ||
+        allOutside(cam, 8, [&](const glm::vec4& p) { return p.y > widen * p.w; }) || allOutside(cam, 8, [&](const glm::vec4& p) { return p.y < -widen * p.w; }) ||
+        allOutside(cam, 8, [](const glm::vec4& p) { return p.w < 0; }) || allOutside(cam, 8, [](const glm::vec4& p) { return p.z > p.w; }))
+      return false;
+    cube::FaceAxes ax = cube::Face(f);
+    glm::vec4 pyr[5] = {camera * glm::vec4(l.position, 1.0f)};
+    for (int i = 0; i < 4; ++i) {
+      glm::vec3 d = ax.major + widen * ((i & 1 ? 1.0f : -1.0f) * ax.s + (i & 2 ? 1.0f : -1.0f) * ax.t);
+      pyr[i + 1] = camera * glm::vec4(l.position + l.range * d, 1.0f);
+    }
+    return !(allOutside(pyr, 5, [](const glm::vec4& p) { return p.x > p.w; }) || allOutside(pyr, 5, [](const glm::vec4& p) { return p.x < -p.w; }) ||
+             allOutside(pyr, 5, [](const glm::vec4& p) { return p.y > p.w; }) || allOutside(pyr, 5, [](const glm::vec4& p) { return p.y < -p.w; }) ||
+             allOutside(pyr, 5, [](const glm::vec4& p) { return p.z < 0; }) || allOutside(pyr, 5, [](const glm::vec4& p) { return p.z > p.w; }));
+  }
+
   // cbuffer CubeShadow in shaders-hlsl/cube/shadow.hlsli.
   struct Constants {
     glm::vec3 lightPosition;
@@ -194,6 +233,7 @@ class CubeTechnique final : public Technique {
   Ref<RasterizerState> rasterizer_;
   Ref<SamplerState> sampler_;
   Ref<Buffer> constants_;
+  bool cullFaces_ = true;
   uint64_t trianglesSubmitted_ = 0;
 };
 

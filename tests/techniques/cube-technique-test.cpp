@@ -81,6 +81,39 @@ void CheckRoomShadows(CubeTechniqueTest& t, const std::map<std::string, std::str
   EXPECT_GT(total.edgeShadowPerFace[3], 20);
 }
 
+// Face culling: a camera looking down at one corner of the floor sees only part of the cube; the
+// faces it cannot see are skipped (fewer triangles drawn) and the picture is the same as with
+// every face rendered. The exact-shadow test above runs with culling on (the default).
+TEST_P(CubeTechniqueTest, FacesTheCameraCannotSeeAreSkippedWithoutChangingThePicture) {
+  const uint32_t W = 96, H = 72;
+  CubeRoom room = MakeCubeRoom();
+  scene::Camera cam = room.scene.camera;
+  cam.position = {-3.5f, 2.0f, -3.0f};
+  cam.target = {-4.0f, 0.0f, -3.5f};
+  cam.fovY = glm::radians(40.0f);
+  std::vector<uint8_t> img[2];
+  uint64_t triangles[2] = {};
+  for (int cull = 0; cull < 2; ++cull) {
+    std::unique_ptr<tech::Renderer> r = MakeRenderer(room.scene, W, H, {{"resolution", "256"}, {"cull_faces", std::to_string(cull)}});
+    r->RenderFrame(cam, room.scene.light);
+    img[cull] = r->ReadColor();
+    triangles[cull] = r->technique().Stats().trianglesSubmitted;
+  }
+  EXPECT_LT(triangles[1], triangles[0]) << "the faces pointing away from the corner must be skipped";
+  EXPECT_EQ(CompareImages("cull-faces", W, H, img[0].data(), img[1].data(), 0), 0u);
+  // Each camera of the exact-shadow test still sees what it did (culling on there): the faces
+  // skipped for it hold nothing it samples.
+  for (const scene::Camera& c : RoomCameras(room)) {
+    std::vector<uint8_t> both[2];
+    for (int cull = 0; cull < 2; ++cull) {
+      std::unique_ptr<tech::Renderer> r = MakeRenderer(room.scene, W, H, {{"resolution", "256"}, {"cull_faces", std::to_string(cull)}});
+      r->RenderFrame(c, room.scene.light);
+      both[cull] = r->ReadColor();
+    }
+    EXPECT_EQ(CompareImages("cull-faces-room", W, H, both[0].data(), both[1].data(), 0), 0u);
+  }
+}
+
 TEST_P(CubeTechniqueTest, BadLightChoicesAreErrors) {
   CubeRoom room = MakeCubeRoom();
   try {
