@@ -75,6 +75,7 @@ const Entry kScenes[] = {
     {"overlapping-occluders", proc::MakeOverlappingOccluders},
     {"distant-occluder", proc::MakeDistantOccluder},
     {"point-light-room", proc::MakePointLightRoom},
+    {"cube-seam", proc::MakeCubeSeam},
 };
 
 }  // namespace

@@ -4,6 +4,8 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
 #include <glm/ext/matrix_transform.hpp>
+#include <glm/ext/scalar_constants.hpp>
+#include <glm/gtc/constants.hpp>
 #include <stdexcept>
 #include <tiny_gltf.h>
 
@@ -121,6 +123,54 @@ std::vector<uint32_t> ToTriangleList(int mode, const std::vector<uint32_t>& idx)
   return out;
 }
 
+// A KHR_lights_punctual light checked against the extension's rules; `what` names it in errors.
+struct LightData {
+  std::string type;
+  glm::vec3 color{1.0f};  // times intensity
+  float range = 0.0f;     // 0: none given
+  float inner = 0.0f, outer = 0.0f;
+};
+
+LightData CheckLight(const Reader& r, const tinygltf::Light& l, const std::string& what) {
+  LightData d;
+  d.type = l.type;
+  if (l.type != "point" && l.type != "spot" && l.type != "directional")
+    r.fail(what + " has type '" + l.type + "' (KHR_lights_punctual has directional, point and spot)");
+  if (!std::isfinite(l.intensity) || l.intensity < 0) r.fail(what + " has intensity " + std::to_string(l.intensity) + " (must be finite and >= 0)");
+  // tinygltf reads an absent range as 0; the extension requires a given range to be > 0.
+  if (!std::isfinite(l.range) || l.range < 0) r.fail(what + " has range " + std::to_string(l.range) + " (must be > 0)");
+  if (!l.color.empty()) {
+    if (l.color.size() != 3) r.fail(what + " has a color of " + std::to_string(l.color.size()) + " numbers (must be 3)");
+    for (double c : l.color)
+      if (!std::isfinite(c) || c < 0) r.fail(what + " has a color component " + std::to_string(c) + " (must be finite and >= 0)");
+    d.color = glm::vec3(float(l.color[0]), float(l.color[1]), float(l.color[2]));
+  }
+  d.color *= float(l.intensity);
+  d.range = float(l.range);
+  if (l.type == "spot") {
+    double in = l.spot.innerConeAngle, out = l.spot.outerConeAngle;
+    if (!std::isfinite(in) || !std::isfinite(out) || in < 0 || in >= out || out > glm::half_pi<double>() + 1e-9)
+      r.fail(what + " has spot cone angles inner " + std::to_string(in) + ", outer " + std::to_string(out) +
+             " (must be 0 <= inner < outer <= pi/2)");
+    d.inner = float(in);
+    d.outer = float(out);
+  }
+  return d;
+}
+
+// The light index a node's KHR_lights_punctual extension names, or -1.
+int NodeLight(const Reader& r, const tinygltf::Node& node, int nodeIndex) {
+  auto ext = node.extensions.find("KHR_lights_punctual");
+  if (ext == node.extensions.end()) return -1;
+  const tinygltf::Value& v = ext->second;
+  std::string what = "node " + std::to_string(nodeIndex) + " KHR_lights_punctual";
+  if (!v.IsObject() || !v.Has("light") || !v.Get("light").IsNumber()) r.fail(what + " has no numeric 'light'");
+  double index = v.Get("light").GetNumberAsDouble();
+  if (index < 0 || index >= double(r.model.lights.size()) || index != std::floor(index))
+    r.fail(what + " refers to light " + std::to_string(index) + ", which does not exist (" + std::to_string(r.model.lights.size()) + " lights)");
+  return int(index);
+}
+
 }  // namespace
 
 Scene LoadGltf(const std::filesystem::path& path) {
@@ -154,6 +204,7 @@ Scene LoadGltf(const std::filesystem::path& path) {
     int depth;
   };
   std::vector<Item> stack;
+  bool directionalSet = false;
   for (int n : roots) stack.push_back({n, glm::mat4(1.0f), 0});
   while (!stack.empty()) {
     Item it = stack.back();
@@ -163,6 +214,17 @@ Scene LoadGltf(const std::filesystem::path& path) {
     const tinygltf::Node& node = model.nodes[it.node];
     glm::mat4 world = it.parent * NodeTransform(node);
     for (int c : node.children) stack.push_back({c, world, it.depth + 1});
+    if (int li = NodeLight(r, node, it.node); li >= 0) {
+      const tinygltf::Light& l = model.lights[li];
+      LightData d = CheckLight(r, l, "light " + std::to_string(li) + (l.name.empty() ? "" : " '" + l.name + "'"));
+      glm::vec3 position(world[3]);
+      glm::vec3 axis = glm::vec3(world * glm::vec4(0, 0, -1, 0));  // lights shine along the node's -z
+      if (!(glm::length(axis) > 0)) r.fail("node " + std::to_string(it.node) + " carries light " + std::to_string(li) + " with a degenerate transform");
+      axis = glm::normalize(axis);
+      if (d.type == "point") s.pointLights.push_back({position, d.color, d.range});
+      else if (d.type == "spot") s.spotLights.push_back({position, axis, d.color, d.range, d.inner, d.outer});
+      else if (!directionalSet) s.light.direction = axis, directionalSet = true;
+    }
     if (node.mesh < 0) continue;
     if (size_t(node.mesh) >= model.meshes.size()) r.fail("node " + std::to_string(it.node) + " refers to mesh " + std::to_string(node.mesh) + ", which does not exist");
     const tinygltf::Mesh& mesh = model.meshes[node.mesh];
@@ -218,7 +280,19 @@ Scene LoadGltf(const std::filesystem::path& path) {
   s.camera.position = c + glm::normalize(glm::vec3(0.6f, 0.55f, 0.8f)) * radius * 1.6f;
   s.camera.nearZ = radius * 0.01f;
   s.camera.farZ = radius * 4.0f;
-  s.light.direction = glm::normalize(glm::vec3(-0.5f, -0.7f, -0.35f));
+  if (!directionalSet) s.light.direction = glm::normalize(glm::vec3(-0.5f, -0.7f, -0.35f));
+  // Lights without a range reach the whole scene: the distance to its farthest corner.
+  auto reach = [&](const glm::vec3& p) {
+    glm::vec3 corners[8];
+    s.bounds.corners(corners);
+    float d = 0;
+    for (const glm::vec3& k : corners) d = std::max(d, glm::length(k - p));
+    return std::max(d, 1e-3f);
+  };
+  for (PointLight& l : s.pointLights)
+    if (l.range == 0) l.range = reach(l.position);
+  for (SpotLight& l : s.spotLights)
+    if (l.range == 0) l.range = reach(l.position);
   return s;
 }
 

@@ -12,6 +12,8 @@ std::unique_ptr<Technique> MakeSdsmTechnique();
 std::unique_ptr<Technique> MakePsmTechnique();
 std::unique_ptr<Technique> MakeLispsmTechnique();
 std::unique_ptr<Technique> MakeTsmTechnique();
+std::unique_ptr<Technique> MakeCubeTechnique();
+std::unique_ptr<Technique> MakeSpotTechnique();
 
 namespace {
 struct Entry {
@@ -26,6 +28,8 @@ const Entry kTechniques[] = {
     {"psm", MakePsmTechnique},
     {"lispsm", MakeLispsmTechnique},
     {"tsm", MakeTsmTechnique},
+    {"cube", MakeCubeTechnique},
+    {"spot", MakeSpotTechnique},
 };
 }  // namespace
 

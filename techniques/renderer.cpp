@@ -1,5 +1,7 @@
 #include <sp/tech/renderer.h>
 
+#include "local-lights.h"
+
 #include <cstring>
 #include <stdexcept>
 
@@ -44,7 +46,7 @@ void ReadRows(DeviceContext& ctx, Texture2D* texture, Texture2D* staging, uint32
 
 }  // namespace
 
-std::pair<ShaderBytecode, ShaderBytecode> Renderer::CompileLitShaders(const Technique& technique, LitPass pass) {
+std::pair<ShaderBytecode, ShaderBytecode> Renderer::CompileLitShaders(const Technique& technique, LitPass pass, const scene::Scene* labScene) {
   // The lit pass is compiled after the technique's include, which defines ShadowVisibility().
   // The wrapper lives (virtually) in shaders-hlsl/ so relative includes resolve there.
   std::string source = "#include \"" + technique.LightingInclude() + "\"\n#include \"lit.hlsl\"\n";
@@ -52,6 +54,8 @@ std::pair<ShaderBytecode, ShaderBytecode> Renderer::CompileLitShaders(const Tech
   hlsl::CompileOptions o;
   o.defines = technique.LightingDefines();
   if (pass == LitPass::Lab) o.defines.push_back({"SP_LAB", "1"});
+  if (pass == LitPass::Lab && labScene && technique.LabLocalLight(*labScene) >= 0)
+    o.defines.push_back({"SP_LAB_LOCAL_LIGHT", std::to_string(technique.LabLocalLight(*labScene))});
   o.includeDirs = {ShaderDirectory()};
   o.target = "vs_5_0";
   o.entryPoint = "VSMain";
@@ -65,7 +69,9 @@ std::pair<ShaderBytecode, ShaderBytecode> Renderer::CompileLitShaders(const Tech
 Renderer::Renderer(Device& device, const scene::Scene& scene, std::unique_ptr<Technique> technique, uint32_t width, uint32_t height,
                    const RendererOptions& options)
     : device_(device), technique_(std::move(technique)), width_(width), height_(height) {
+  CheckLocalLights(scene);
   gpu_ = std::make_unique<scene::GpuScene>(device, scene);
+  localLights_ = MakeConstantBuffer(device, sizeof(LocalLightConstants), "LocalLights constants");
   drawer_ = std::make_unique<SceneDrawer>(device, *gpu_);
 
   TEXTURE2D_DESC cd;
@@ -98,7 +104,7 @@ Renderer::Renderer(Device& device, const scene::Scene& scene, std::unique_ptr<Te
 
   if (options.lab) {
     // The lab variant shares the vertex shader: VSMain does not depend on SP_LAB.
-    labPs_ = device.CreatePixelShader(CompileLitShaders(*technique_, LitPass::Lab).second);
+    labPs_ = device.CreatePixelShader(CompileLitShaders(*technique_, LitPass::Lab, &scene).second);
     CreateLabTargets();
   }
 }
@@ -128,6 +134,7 @@ FrameInputs Renderer::MakeFrame(const scene::Camera& camera, const scene::Direct
   f.cameraView = camera.view();
   f.cameraProj = camera.projection(float(width_) / float(height_));
   f.timer = timer_;
+  f.localLights = LocalLightsOf(gpu_->scene());
   return f;
 }
 
@@ -173,12 +180,15 @@ void Renderer::LitPassInternal(DeviceContext& ctx, const FrameInputs& f, LitPass
   ctx.RSSetState(litRasterizer_.get());
 
   drawer_->SetFrame(ctx, f.cameraProj * f.cameraView, &f);
+  LocalLightConstants local = PackLocalLights(f.localLights);
+  ctx.UpdateSubresource(localLights_.get(), 0, nullptr, &local, 0, 0);
   gpu_->BindGeometry(ctx);
   ctx.IASetInputLayout(litLayout_.get());
   ctx.VSSetShader(litVs_.get());
   ctx.PSSetShader(pass == LitPass::Lab ? labPs_.get() : litPs_.get());
   drawer_->BindConstants(ctx, ShaderStage::Vertex);
   drawer_->BindConstants(ctx, ShaderStage::Pixel);
+  ctx.PSSetConstantBuffers(6, {localLights_.get()});
   technique_->BindLighting(ctx);
   for (const scene::DrawItem& d : gpu_->draws()) {
     drawer_->SetObject(ctx, d.instance);

@@ -117,7 +117,17 @@ RunResult RunOne(const RunSpec& spec, eval::ReferenceCache& reference, const Pro
   r.shadowMemoryBytes = tech.Stats().memoryBytes;
 
   // --- 2. Measurement: the lab's lit pass, read back and judged.
+  // The directional light, or the local light a local-light technique is judged on.
   eval::ReferenceLight light = eval::ReferenceLight::FromScene(scene.light);
+  if (int k = tech.LabLocalLight(scene); k >= 0) {
+    std::vector<tech::LocalLight> local = tech::LocalLightsOf(scene);
+    if (size_t(k) >= local.size())
+      throw std::invalid_argument(r.technique + " is judged on local light " + std::to_string(k) + " but scene '" + scene.name + "' has " +
+                                  std::to_string(local.size()));
+    const tech::LocalLight& l = local[k];
+    r.judgedLocalLight = k;
+    light = l.type == tech::LocalLight::Spot ? eval::ReferenceLight::MakeSpot(l.position, l.direction, l.cosOuter) : eval::ReferenceLight::MakePoint(l.position);
+  }
   // The cache's tracer uses the default options (bench.cpp), so its resolution is known without
   // building a tracer when every frame comes from the cache.
   r.referenceEpsilon = eval::ReferenceOptions{}.relativeEpsilon * eval::ReferenceSceneScale(scene);

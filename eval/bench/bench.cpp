@@ -178,6 +178,8 @@ nlohmann::json RunToJson(const RunResult& r, const std::map<std::string, std::st
         {"validation_enabled", r.validationEnabled},
         {"validation_errors", r.validationErrors}}},
   };
+  // Local-light techniques are judged on one local light (index into the scene's point lights, then spot lights).
+  if (r.judgedLocalLight >= 0) run["checks"]["judged_local_light"] = r.judgedLocalLight;
   if (!r.lastValidationError.empty()) run["checks"]["last_validation_error"] = r.lastValidationError;
   if (!images.empty()) run["images"] = images;
   return run;

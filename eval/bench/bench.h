@@ -70,6 +70,7 @@ struct RunResult {
   tech::LabBuffers firstFrame;              // frame 0 (the path's start), for the pictures
   std::vector<uint8_t> firstReference;
   scene::DirectionalLight light;
+  int judgedLocalLight = -1;                // Technique::LabLocalLight: -1 the directional light
 
   uint64_t validationErrors = 0, disjointFrames = 0;
   bool validationEnabled = false;           // the layers / debug output were really on

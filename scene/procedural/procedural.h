@@ -89,5 +89,6 @@ Scene MakeContact(uint64_t budget);
 Scene MakeOverlappingOccluders(uint64_t budget);
 Scene MakeDistantOccluder(uint64_t budget);
 Scene MakePointLightRoom(uint64_t budget);
+Scene MakeCubeSeam(uint64_t budget);
 
 }  // namespace sp::scene::proc

@@ -1,6 +1,6 @@
 // Constants shared by the lit pass and the shadow passes.
 // Register plan (see docs/porting.md): b0 frame, b1 object, b2..b5 and t0..t15, s0..s3 belong to the
-// shadow technique; the lit pass itself uses nothing else.
+// shadow technique; b6 holds the lit pass's local lights (common/local-lights.hlsli).
 #ifndef SP_FRAME_HLSLI
 #define SP_FRAME_HLSLI
 

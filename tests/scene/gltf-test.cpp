@@ -1,5 +1,6 @@
 // glTF loading: the real scenes beside the project load with the documented triangle counts and
 // bounds, and malformed files give an error naming the file and the problem, never a crash.
+#include <functional>
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -144,6 +145,83 @@ TEST_F(MalformedGltf, OutOfRangeIndexIsAnError) {
   bin.close();
   std::string e = LoadError(base_, "bad-index");
   EXPECT_NE(e.find("index 9"), std::string::npos) << e;
+}
+
+
+// KHR_lights_punctual: a point light and a spot light on nodes with transforms, a directional one.
+class GltfLights : public MalformedGltf {
+ protected:
+  json WithLights(const json& lights) {
+    json j = base_;
+    j["extensionsUsed"] = {"KHR_lights_punctual"};
+    j["extensions"]["KHR_lights_punctual"]["lights"] = lights;
+    j["scenes"][0]["nodes"] = {0, 1, 2, 3};
+    // Node 1: translated to (1, 2, 3). Node 2: at (0, 4, 0), rotated -90 degrees about x, so its -z
+    // points down (-y). Node 3: rotated +90 degrees about y, so its -z points along -x.
+    const double h = std::sqrt(0.5);
+    j["nodes"].push_back({{"translation", {1, 2, 3}}, {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
+    j["nodes"].push_back({{"translation", {0, 4, 0}}, {"rotation", {-h, 0, 0, h}}, {"extensions", {{"KHR_lights_punctual", {{"light", 1}}}}}});
+    j["nodes"].push_back({{"rotation", {0, h, 0, h}}, {"extensions", {{"KHR_lights_punctual", {{"light", 2}}}}}});
+    return j;
+  }
+  json GoodLights() {
+    return json::parse(R"([
+      {"type": "point", "color": [1, 0.5, 0.25], "intensity": 4, "range": 7},
+      {"type": "spot", "name": "lamp", "intensity": 2, "spot": {"innerConeAngle": 0.2, "outerConeAngle": 0.6}},
+      {"type": "directional", "intensity": 3}])");
+  }
+};
+
+TEST_F(GltfLights, PointSpotAndDirectionalLightsLoad) {
+  std::ofstream(dir_ / "lights.gltf") << WithLights(GoodLights()).dump();
+  scene::Scene s = scene::LoadGltf(dir_ / "lights.gltf");
+  ASSERT_EQ(s.pointLights.size(), 1u);
+  ASSERT_EQ(s.spotLights.size(), 1u);
+  const scene::PointLight& p = s.pointLights[0];
+  EXPECT_EQ(p.position, glm::vec3(1, 2, 3));
+  EXPECT_EQ(p.color, glm::vec3(4, 2, 1));
+  EXPECT_EQ(p.range, 7.0f);
+  const scene::SpotLight& sp = s.spotLights[0];
+  EXPECT_NEAR(glm::distance(sp.position, glm::vec3(0, 4, 0)), 0.0f, 1e-6f);
+  EXPECT_NEAR(glm::distance(sp.direction, glm::vec3(0, -1, 0)), 0.0f, 1e-5f);
+  EXPECT_EQ(sp.color, glm::vec3(2));
+  EXPECT_FLOAT_EQ(sp.innerConeAngle, 0.2f);
+  EXPECT_FLOAT_EQ(sp.outerConeAngle, 0.6f);
+  // No range given: the distance to the farthest corner of the scene's bounds (the triangle spans
+  // (0,0,0)-(1,1,0); from (0,4,0) the farthest corner is (1,0,0)).
+  EXPECT_NEAR(sp.range, std::sqrt(17.0f), 1e-5f);
+  EXPECT_NEAR(glm::distance(glm::normalize(s.light.direction), glm::vec3(-1, 0, 0)), 0.0f, 1e-5f);
+}
+
+TEST_F(GltfLights, BadLightDataIsAnErrorNamingFileAndLight) {
+  struct Case {
+    const char* name;
+    std::function<void(json&)> edit;
+    const char* expect;
+  };
+  const Case cases[] = {
+      {"negative-range", [](json& l) { l[0]["range"] = -1; }, "range"},
+      {"negative-intensity", [](json& l) { l[0]["intensity"] = -2; }, "intensity"},
+      {"short-color", [](json& l) { l[0]["color"] = {1, 1}; }, "color"},
+      {"negative-color", [](json& l) { l[0]["color"] = {1, -1, 1}; }, "color"},
+      {"outer-too-wide", [](json& l) { l[1]["spot"]["outerConeAngle"] = 1.7; }, "cone"},
+      {"inner-past-outer", [](json& l) { l[1]["spot"]["innerConeAngle"] = 0.7; }, "cone"},
+      {"negative-inner", [](json& l) { l[1]["spot"]["innerConeAngle"] = -0.1; }, "cone"},
+      {"unknown-type", [](json& l) { l[0]["type"] = "area"; }, "type"},
+  };
+  for (const Case& c : cases) {
+    json lights = GoodLights();
+    c.edit(lights);
+    std::string e = LoadError(WithLights(lights), c.name);
+    EXPECT_NE(e.find(std::string(c.name) + ".gltf"), std::string::npos) << c.name << ": " << e;
+    EXPECT_NE(e.find(c.expect), std::string::npos) << c.name << ": " << e;
+    EXPECT_NE(e.find("light "), std::string::npos) << c.name << ": " << e;
+  }
+  json j = WithLights(GoodLights());
+  j["nodes"][1]["extensions"]["KHR_lights_punctual"]["light"] = 5;
+  std::string e = LoadError(j, "missing-light");
+  EXPECT_NE(e.find("light 5"), std::string::npos) << e;
+  EXPECT_NE(e.find("missing-light.gltf"), std::string::npos) << e;
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <cstring>
 #include <map>
+#include <set>
 #include <tuple>
 
 #include <sp/scene/scene.h>
@@ -25,7 +26,8 @@ using scene::Mesh;
 using scene::Scene;
 
 const std::vector<std::string> kNames = {"default",          "terrain-city",          "canyon-city",      "dueling-frusta",  "grazing-light",
-                                         "contact",          "overlapping-occluders", "distant-occluder", "point-light-room"};
+                                         "contact",          "overlapping-occluders", "distant-occluder", "point-light-room",
+                                         "cube-seam"};
 
 bool Finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
@@ -141,6 +143,12 @@ bool SameScene(const Scene& a, const Scene& b) {
   for (size_t i = 0; i < a.pointLights.size(); ++i)
     if (a.pointLights[i].position != b.pointLights[i].position || a.pointLights[i].color != b.pointLights[i].color ||
         a.pointLights[i].range != b.pointLights[i].range)
+      return false;
+  if (a.spotLights.size() != b.spotLights.size()) return false;
+  for (size_t i = 0; i < a.spotLights.size(); ++i)
+    if (a.spotLights[i].position != b.spotLights[i].position || a.spotLights[i].direction != b.spotLights[i].direction ||
+        a.spotLights[i].color != b.spotLights[i].color || a.spotLights[i].range != b.spotLights[i].range ||
+        a.spotLights[i].innerConeAngle != b.spotLights[i].innerConeAngle || a.spotLights[i].outerConeAngle != b.spotLights[i].outerConeAngle)
       return false;
   if (a.cameraPaths.size() != b.cameraPaths.size()) return false;
   for (size_t i = 0; i < a.cameraPaths.size(); ++i) {
@@ -581,6 +589,37 @@ TEST(ProceduralSceneProperties, PointLightRoomIsClosedAroundItsLights) {
         }
   }
   for (const scene::PointLight& l : s.pointLights) EXPECT_GT(l.range, 0.0f);
+}
+
+
+// The seam scene: every occluder floats between the light and the floor and spans a cube-map face
+// edge as seen from the point light (its box's corners select at least two faces), so each shadow
+// crosses a seam; one bar lies in the -Y/+X edge plane, its shadow along the seam.
+TEST(ProceduralSceneProperties, CubeSeamOccludersStraddleCubeFaceEdges) {
+  Scene s = scene::MakeBuiltinScene("cube-seam");
+  ASSERT_EQ(s.pointLights.size(), 1u);
+  const glm::vec3 L = s.pointLights[0].position;
+  auto face = [](glm::vec3 d) {  // D3D11's cube face of a direction (ties to z, then y)
+    glm::vec3 a = glm::abs(d);
+    if (a.z >= a.x && a.z >= a.y) return d.z >= 0 ? 4 : 5;
+    if (a.y >= a.x) return d.y >= 0 ? 2 : 3;
+    return d.x >= 0 ? 0 : 1;
+  };
+  int occluders = 0, onEdgePlane = 0;
+  for (const Instance& i : s.instances) {
+    if (i.worldBounds.min.y < 0.05f || i.worldBounds.max.y > L.y) continue;  // floor tiles and walls
+    ++occluders;
+    glm::vec3 corners[8];
+    i.worldBounds.corners(corners);
+    std::set<int> faces;
+    for (const glm::vec3& c : corners) faces.insert(face(c - L));
+    EXPECT_GE(faces.size(), 2u) << "occluder at " << i.worldBounds.center().x << "," << i.worldBounds.center().y << "," << i.worldBounds.center().z;
+    glm::vec3 d = i.worldBounds.center() - L;
+    onEdgePlane += std::abs(std::abs(d.x) - std::abs(d.y)) < 1e-4f && i.worldBounds.extent().z > 1.0f;
+  }
+  EXPECT_GE(occluders, 5);
+  EXPECT_EQ(onEdgePlane, 1);
+  for (const Instance& i : s.instances) EXPECT_FALSE(Inside(s, i, L));
 }
 
 }  // namespace

@@ -71,13 +71,29 @@ struct DirectionalLight {
   glm::vec3 towardsLight() const { return -glm::normalize(direction); }
 };
 
-// An omni light for point-light shadow techniques (cube or dual-paraboloid maps). The lit pass of
-// the renderer uses the directional light only; scenes whose point is omni shadows (the
-// "point-light-room") make their directional light dim and put the lighting here.
+// Local lights. The renderer's lit pass shades every point and spot light of the scene beside the
+// directional light, with glTF's recommended (KHR_lights_punctual) falloff: intensity
+//   color * clamp(1 - (d / range)^4, 0, 1) / d^2
+// at distance d, times N.L, and for spot lights the cone factor
+//   t = clamp((cos(angle to axis) - cos(outer)) / max(1e-3, cos(inner) - cos(outer)), 0, 1), t^2.
+// They are unshadowed unless a local-light technique (e.g. "cube") shadows them. Scenes whose point
+// is local lights (the "point-light-room") make their directional light dim.
+//
+// An omni light for point-light shadow techniques (cube or dual-paraboloid maps).
 struct PointLight {
   glm::vec3 position{0.0f};
   glm::vec3 color{1.0f};  // linear intensity at the light, before attenuation
   float range = 10.0f;    // distance where the light's contribution reaches zero: the shadow far plane
+};
+
+// A spot light: a point light limited to a cone about `direction`.
+struct SpotLight {
+  glm::vec3 position{0.0f};
+  glm::vec3 direction{0.0f, -1.0f, 0.0f};  // the cone's axis, the way the light travels
+  glm::vec3 color{1.0f};                   // linear intensity on the axis, before attenuation
+  float range = 10.0f;                     // as PointLight::range
+  float innerConeAngle = 0.0f;             // radians from the axis: full intensity inside
+  float outerConeAngle = 0.7853982f;       // radians, in (innerConeAngle, pi/2]: no light outside
 };
 
 // A camera position and look-at point at one time of a path.
@@ -105,6 +121,7 @@ struct Scene {
   Camera camera;
   DirectionalLight light;
   std::vector<PointLight> pointLights;  // empty unless the scene is about omni shadows
+  std::vector<SpotLight> spotLights;    // empty unless the scene has spot lights
   // Every built-in scene has "slow-pan", "rotate" and "dolly" (see StandardCameraPaths), starting
   // at `camera`, plus paths of its own; LoadScene gives glTF scenes the three standard ones.
   std::vector<CameraPath> cameraPaths;
@@ -143,7 +160,13 @@ std::vector<CameraPath> StandardCameraPaths(const Camera& camera, const Bounds& 
 std::vector<CameraPath> CameraPathsFor(const Scene& scene);
 
 // A glTF 2.0 file (.gltf + .bin or .glb). Throws std::runtime_error naming the file and the
-// offending element for anything malformed.
+// offending element for anything malformed. KHR_lights_punctual lights attached to nodes become
+// Scene::pointLights and Scene::spotLights (color = color * intensity; position and direction
+// (the node's -z) from the node's world transform; a light without range gets the distance from
+// it to the farthest corner of the scene's bounds); the first directional light sets
+// Scene::light's direction. Bad light data (negative or non-finite range or intensity, a colour
+// that is not three non-negative numbers, spot cone angles outside 0 <= inner < outer <= pi/2,
+// an unknown type, a node referring to a light that does not exist) is an error naming the light.
 Scene LoadGltf(const std::filesystem::path& path);
 
 // A built-in scene name, a scene of ../shared/scenes by folder name (ShadowColumns, TankScene,

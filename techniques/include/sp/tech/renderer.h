@@ -1,5 +1,7 @@
 // Renders one frame of a scene with a shadow technique: the technique's shadow passes, then the
-// lit pass into an sRGB colour target with a D32 depth buffer.
+// lit pass into an sRGB colour target with a D32 depth buffer. The lit pass shades the scene's
+// directional light and its local lights (FrameInputs::localLights, at most kMaxLocalLights; the
+// constructor throws std::invalid_argument for more or for a light it cannot shade).
 //
 // For the lab (RendererOptions::lab) the renderer also builds a variant of the lit pass
 // (shaders-hlsl/lit.hlsl compiled with SP_LAB=1) that writes, beside the same colour, the world
@@ -58,8 +60,10 @@ class Renderer {
   uint32_t width() const { return width_; }
   uint32_t height() const { return height_; }
 
-  // The lit pass's shaders for a technique (what RenderFrame uses); exposed for tests.
-  static std::pair<ShaderBytecode, ShaderBytecode> CompileLitShaders(const Technique& technique, LitPass pass = LitPass::Normal);
+  // The lit pass's shaders for a technique (what RenderFrame uses); exposed for tests. The lab
+  // variant judges the light Technique::LabLocalLight(*labScene) names (none: the directional one).
+  static std::pair<ShaderBytecode, ShaderBytecode> CompileLitShaders(const Technique& technique, LitPass pass = LitPass::Normal,
+                                                                     const scene::Scene* labScene = nullptr);
 
  private:
   struct LabTarget {
@@ -82,6 +86,7 @@ class Renderer {
   Ref<PixelShader> litPs_, labPs_;
   Ref<InputLayout> litLayout_;
   Ref<RasterizerState> litRasterizer_;
+  Ref<Buffer> localLights_;  // cbuffer LocalLights (b6) of the lit pass
   // Lab: position, normal, visibility, lookup, albedo (SV_Target1..5), and the colour's staging copy.
   LabTarget lab_[5];
   Ref<Texture2D> colorStaging_;

@@ -72,10 +72,30 @@ bool RegisterPackageShaderDirectory(const char* directory);
 inline const bool kShadowPortPackageShadersRegistered = RegisterPackageShaderDirectory(SHADOWPORT_PACKAGE_SHADER_DIR);
 #endif
 
+// A local light as the lit pass shades it (shaders-hlsl/common/local-lights.hlsli): the scene's
+// point lights first, in order, then its spot lights, so local light i < scene.pointLights.size()
+// is point light i. Local-light techniques name the lights they shadow by this index.
+struct LocalLight {
+  enum Type { Point = 0, Spot = 1 } type = Point;
+  glm::vec3 position{0.0f};
+  glm::vec3 direction{0.0f, -1.0f, 0.0f};  // spot: unit axis, the way the light travels
+  glm::vec3 color{1.0f};
+  float range = 10.0f;
+  float cosInner = 1.0f, cosOuter = -1.0f;  // spot: cosines of the cone angles; point: -1 (no cone)
+};
+std::vector<LocalLight> LocalLightsOf(const scene::Scene& scene);
+// The lit pass shades at most this many local lights; the Renderer refuses scenes with more.
+constexpr uint32_t kMaxLocalLights = 32;
+
 struct FrameInputs {
   const scene::Scene* scene = nullptr;
   scene::Camera camera;
   scene::DirectionalLight light;
+  // The scene's local lights (LocalLightsOf), shaded by the lit pass after the directional light.
+  // Directional techniques ignore them; a local-light technique shadows some of them, and its
+  // lighting include defines SP_LOCAL_SHADOWS and LocalShadowVisibility(light index, ...) (see
+  // shaders-hlsl/common/local-lights.hlsli), returning 1 for the lights it does not shadow.
+  std::vector<LocalLight> localLights;
   uint32_t width = 0, height = 0;  // of the lit pass
   glm::mat4 cameraView{1.0f}, cameraProj{1.0f};
   // Set while the lab measures GPU time; techniques bracket their passes with
@@ -167,6 +187,12 @@ class Technique {
   virtual ShadowStats Stats() const = 0;
   // The layers ShadowLocate() can return, for the lab's utilization metric (valid after Configure).
   virtual std::vector<ShadowLayer> Layers() const = 0;
+  // The light the lab judges this technique on in `scene`: -1 (every directional technique) the
+  // directional light; otherwise the local light (LocalLightsOf(scene) index) whose shadow
+  // ShadowLocate() reports. The lab's lit pass then writes that light's N.L (0 where it lights
+  // nothing: beyond its range, outside a spot's outer cone) and LocalShadowVisibility() for it,
+  // and the bench traces the reference from its position.
+  virtual int LabLocalLight(const scene::Scene& scene) const { return -1; }
 };
 
 // --- Registry (techniques/registry.cpp: one line per technique)

@@ -1,0 +1,135 @@
+// The spot technique: one spot light's shadow in one perspective depth map whose frustum holds the
+// light's cone (field of view twice the outer cone angle, near to range), rendered depth-only with
+// D3D11 rasterizer depth bias and read with SampleCmpLevelZero (2x2 hardware PCF), as basic does
+// for the directional light. Casters outside the frustum are culled. The directional light and
+// the other local lights are unshadowed.
+#include <glm/ext/matrix_clip_space.hpp>
+#include <glm/ext/matrix_transform.hpp>
+#include <stdexcept>
+
+#include <sp/tech/technique.h>
+
+namespace sp::tech {
+namespace {
+
+// One perspective map cannot hold a cone much wider than this; the cube technique can.
+constexpr float kMaxOuterDegrees = 80.0f;
+
+class SpotTechnique final : public Technique {
+ public:
+  std::string Name() const override { return "spot"; }
+
+  std::vector<ParamSpec> Params() const override {
+    return {
+        {ParamSpec::Int, "light", "the spot light shadowed (index into the scene's spot lights)", "0", 0, kMaxLocalLights - 1, {}},
+        {ParamSpec::Int, "resolution", "shadow map width and height in texels", "1024", 16, 16384, {}},
+        {ParamSpec::Float, "near", "near plane in world units (casters closer to the light are not drawn)", "0.05", 1e-4, 1e3, {}},
+        {ParamSpec::Int, "depth_bias", "D3D11 DepthBias (units of the depth format)", "200", -1e7, 1e7, {}},
+        {ParamSpec::Float, "slope_bias", "D3D11 SlopeScaledDepthBias", "2.0", -100, 100, {}},
+    };
+  }
+
+  void Configure(Device& device, const ParamValues& p) override {
+    light_ = uint32_t(p.getInt("light"));
+    resolution_ = uint32_t(p.getInt("resolution"));
+    near_ = p.getFloat("near");
+    map_ = MakeDepthMap(device, resolution_, resolution_, "spot shadow map");
+    RASTERIZER_DESC rd;
+    rd.FrontCounterClockwise = true;  // glTF winding, as in the lit pass
+    rd.DepthBias = p.getInt("depth_bias");
+    rd.SlopeScaledDepthBias = p.getFloat("slope_bias");
+    rasterizer_ = device.CreateRasterizerState(rd);
+    sampler_ = MakeShadowComparisonSampler(device);
+    constants_ = MakeConstantBuffer(device, sizeof(Constants), "SpotShadow constants");
+  }
+
+  void RenderShadows(DeviceContext& ctx, SceneDrawer& drawer, const FrameInputs& frame) override {
+    GpuTimer::Scope timed(frame.timer, ctx, "shadow");
+    const scene::Scene& s = *frame.scene;
+    if (light_ >= s.spotLights.size())
+      throw std::invalid_argument("spot: light=" + std::to_string(light_) + " but scene '" + s.name + "' has " + std::to_string(s.spotLights.size()) +
+                                  " spot light(s)");
+    uint32_t index = uint32_t(s.pointLights.size()) + light_;  // LocalLightsOf: point lights first
+    const LocalLight& l = frame.localLights.at(index);
+    float outer = std::acos(glm::clamp(l.cosOuter, -1.0f, 1.0f));
+    if (glm::degrees(outer) > kMaxOuterDegrees)
+      throw std::invalid_argument("spot: spot light " + std::to_string(light_) + " of scene '" + s.name + "' has an outer cone angle of " +
+                                  std::to_string(glm::degrees(outer)) + " degrees; one perspective map holds at most " +
+                                  std::to_string(int(kMaxOuterDegrees)) + " (shadow it with the cube technique)");
+    if (!(near_ < l.range))
+      throw std::invalid_argument("spot: near=" + std::to_string(near_) + " is not below the range of spot light " + std::to_string(light_) + " (" +
+                                  std::to_string(l.range) + ")");
+    glm::vec3 up = std::abs(l.direction.y) > 0.99f ? glm::vec3(0, 0, 1) : glm::vec3(0, 1, 0);
+    glm::mat4 view = glm::lookAtRH(l.position, l.position + l.direction, up);
+    // A square frustum whose inscribed cone is the outer cone.
+    glm::mat4 proj = glm::perspectiveRH_ZO(2.0f * outer, 1.0f, near_, l.range);
+    viewProj_ = proj * view;
+    Constants c{viewProj_, glm::vec2(float(resolution_)), index, 0.0f};
+    ctx.UpdateSubresource(constants_.get(), 0, nullptr, &c, 0, 0);
+
+    ShaderResourceView* none = nullptr;
+    ctx.PSSetShaderResources(0, 1, &none);
+    ctx.OMSetRenderTargets(0, nullptr, map_.dsv.get());
+    ctx.ClearDepthStencilView(map_.dsv.get(), CLEAR_DEPTH, 1.0f, 0);
+    VIEWPORT vp{0, 0, float(resolution_), float(resolution_), 0, 1};
+    ctx.RSSetViewports(1, &vp);
+    ctx.RSSetState(rasterizer_.get());
+    ctx.OMSetDepthStencilState(nullptr, 0);
+    const std::vector<scene::Instance>& instances = s.instances;
+    trianglesSubmitted_ = drawer.DrawDepth(ctx, viewProj_, [&](uint32_t i) { return InFrustum(viewProj_, instances[i].worldBounds); });
+  }
+
+  std::string LightingInclude() const override { return "spot/shadow.hlsli"; }
+
+  void BindLighting(DeviceContext& ctx) override {
+    ctx.PSSetConstantBuffers(2, {constants_.get()});
+    ctx.PSSetShaderResources(0, {map_.srv.get()});
+    ctx.PSSetSamplers(0, {sampler_.get()});
+  }
+
+  ShadowStats Stats() const override { return {uint64_t(resolution_) * resolution_ * 4, trianglesSubmitted_}; }
+  std::vector<ShadowLayer> Layers() const override { return {{resolution_, resolution_}}; }
+  int LabLocalLight(const scene::Scene& scene) const override { return int(scene.pointLights.size() + light_); }
+
+ private:
+  // Outside when all 8 corners are outside one clip plane (exact for the box: the planes are linear).
+  static bool InFrustum(const glm::mat4& viewProj, const scene::Bounds& b) {
+    glm::vec3 corners[8];
+    b.corners(corners);
+    glm::vec4 c[8];
+    for (int i = 0; i < 8; ++i) c[i] = viewProj * glm::vec4(corners[i], 1.0f);
+    for (int plane = 0; plane < 6; ++plane) {
+      bool allOut = true;
+      for (const glm::vec4& p : c) {
+        float d = plane == 0 ? p.w - p.x : plane == 1 ? p.w + p.x : plane == 2 ? p.w - p.y : plane == 3 ? p.w + p.y : plane == 4 ? p.z : p.w - p.z;
+        allOut = allOut && d < 0;
+      }
+      if (allOut) return false;
+    }
+    return true;
+  }
+
+  // cbuffer SpotShadow in shaders-hlsl/spot/shadow.hlsli.
+  struct Constants {
+    glm::mat4 viewProj;
+    glm::vec2 mapSize;
+    uint32_t lightIndex;
+    float pad;
+  };
+  static_assert(sizeof(Constants) == 80);
+
+  uint32_t light_ = 0, resolution_ = 0;
+  float near_ = 0.05f;
+  DepthMap map_;
+  Ref<RasterizerState> rasterizer_;
+  Ref<SamplerState> sampler_;
+  Ref<Buffer> constants_;
+  glm::mat4 viewProj_{1.0f};
+  uint64_t trianglesSubmitted_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<Technique> MakeSpotTechnique() { return std::make_unique<SpotTechnique>(); }
+
+}  // namespace sp::tech
