@@ -77,7 +77,9 @@ TEST(SpotTechniqueCrossBackend, RoomRendersIdenticallyAndTheLabJudgesTheSpotLigh
   room.scene.camera = RoomCameras(room)[0];
   CrossBackendFrame f = RenderOnBothBackends("spot", {{"resolution", "512"}}, room.scene, W, H);
   size_t differing = CompareImages("spot-room", W, H, f.images[0].data(), f.images[1].data(), 0);
-  if (f.mesa) EXPECT_EQ(differing, 0u) << "Vulkan and GL images differ on Mesa; see the heat map in " << TestOutputDir();
+  if (f.mesa) {
+    EXPECT_EQ(differing, 0u) << "Vulkan and GL images differ on Mesa; see the heat map in " << TestOutputDir();
+  }
 
   // The lab: judged on the spot light (local light 0: the room has no point light), against Embree.
   eval::ReferenceCache cache(room.scene, TestOutputDir() / "reference-cache");

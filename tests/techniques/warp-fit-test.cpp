@@ -419,7 +419,9 @@ TEST(WarpCulling, KeepsEveryBoxThatReachesTheMapAndDropsMostOthers) {
                 reaches = q.w > 0 && std::abs(q.x) <= q.w && std::abs(q.y) <= q.w && LinearDepth(fit, p) <= 1.0f;
               }
           bool may = MayCastInto(fit, box);
-          if (reaches) EXPECT_TRUE(may) << Name(w) << " gamma " << g << " d1 " << d1 << " box " << k;
+          if (reaches) {
+            EXPECT_TRUE(may) << Name(w) << " gamma " << g << " d1 " << d1 << " box " << k;
+          }
           (may ? kept : culled) += 1;
         }
       }
