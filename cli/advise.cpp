@@ -29,7 +29,7 @@ void OnInterrupt(int) { gInterrupt.store(true); }
 
 std::string Row(const advise::Measurement& m, const advise::SelectOptions& o, const char* mark) {
   std::ostringstream s;
-  s << std::fixed << "| " << mark << " | `" << advise::ConfigText(m.config) << "` | " << std::setprecision(1) << m.metrics.at("ms") << " | "
+  s << std::fixed << "| " << mark << " | `" << advise::ShortText(m.config) << "` | " << std::setprecision(1) << m.metrics.at("ms") << " | "
     << m.metrics.at("memory") << " | " << std::setprecision(3) << m.metrics.at("misclassified") << " | " << m.metrics.at("false_lit")
     << " | " << m.metrics.at("false_shadow") << " | " << std::defaultfloat << std::setprecision(2) << m.metrics.at("flicker") << " | "
     << (advise::MeetsBudgets(m, o.budgets) ? "yes" : "no") << " |";
@@ -67,7 +67,7 @@ int RunPython(const std::vector<std::string>& args) {
 
 int RunAdvise(const Args& a) {
   a.expectOnly({"scene", "path", "backend", "size", "frames", "budget", "minimize", "techniques", "axes", "out", "cache", "noise",
-                "max-runs", "max-resolution", "exhaustive", "no-report"});
+                "max-runs", "max-resolution", "confirm", "exhaustive", "no-report"});
   if (!a.positionals().empty()) throw std::invalid_argument("unexpected argument '" + a.positionals()[0] + "'");
   if (!a.has("scene")) throw std::invalid_argument("--scene is required (e.g. --scene ShadowColumns)");
   advise::SearchOptions o;
@@ -101,6 +101,7 @@ int RunAdvise(const Args& a) {
   }
   o.maxRuns = ParseCount(a.get("max-runs", "200"), "max-runs", 1, 100000);
   o.maxResolution = int(ParseCount(a.get("max-resolution", "4096"), "max-resolution", 256, 16384));
+  o.confirm = int(ParseCount(a.get("confirm", "3"), "confirm", 1, 20));
   o.exhaustive = a.has("exhaustive");
   o.interrupt = &gInterrupt;
 
@@ -142,14 +143,15 @@ int RunAdvise(const Args& a) {
   int rc = 0;
   if (r.selection.best) {
     const advise::Measurement& best = m[*r.selection.best];
-    std::printf("\nrecommendation: %s\n%s\n%s\n", advise::ConfigText(best.config).c_str(), kHeader, Row(best, so, "**>**").c_str());
+    std::printf("\nrecommendation: %s\n%s\n%s\n", advise::ShortText(best.config).c_str(), kHeader, Row(best, so, "**>**").c_str());
     if (r.selection.cheaperMiss) std::printf("%s  (the closest cheaper configuration, which misses the budget)\n", Row(m[*r.selection.cheaperMiss], so, "<").c_str());
     for (size_t d : r.defaults) std::printf("%s  (%s's defaults)\n", Row(m[d], so, "d").c_str(), m[d].config.technique.c_str());
     std::string params;
-    for (const auto& [k, v] : best.config.params) params += " --param " + k + "=" + v;
-    std::printf("\nas options:    --technique %s\n", advise::ConfigText(best.config).c_str());
+    const advise::Config shorter = advise::WithoutDefaults(best.config);
+    for (const auto& [k, v] : shorter.params) params += " --param " + k + "=" + v;
+    std::printf("\nas options:    --technique %s\n", advise::ShortText(best.config).c_str());
     std::printf("as --param:    --technique %s%s\n", best.config.technique.c_str(), params.c_str());
-    std::printf("in C++:\n\n%s\n", advise::CppSnippet(best.config).c_str());
+    std::printf("in C++:\n\n%s\n", advise::CppSnippet(shorter).c_str());
   } else {
     std::printf("\nno configuration meets the budget (%s); the closest:\n%s\n", budgets.c_str(), kHeader);
     for (size_t i : r.selection.closest) std::printf("%s\n", Row(m[i], so, " ").c_str());
@@ -174,8 +176,8 @@ int RunAdvise(const Args& a) {
   fs::path relCache = fs::relative(fs::absolute(r.cacheDir), fs::absolute(o.out));
   doc["configurations"] = nlohmann::json::array();
   for (size_t i = 0; i < m.size(); ++i) {
-    nlohmann::json c = {{"config", advise::ConfigText(m[i].config)}, {"technique", m[i].config.technique}, {"params", m[i].config.params},
-                        {"metrics", m[i].metrics}, {"meets", advise::MeetsBudgets(m[i], so.budgets)}};
+    nlohmann::json c = {{"config", advise::ShortText(m[i].config)}, {"full_config", advise::ConfigText(m[i].config)}, {"technique", m[i].config.technique}, {"params", m[i].config.params},
+                        {"metrics", m[i].metrics}, {"meets", advise::MeetsBudgets(m[i], so.budgets)}, {"ms_runs", m[i].msRuns}};
     nlohmann::json images = m[i].record.value("images", nlohmann::json::object());
     for (auto& [k, v] : images.items()) v = (relCache / v.get<std::string>()).string();
     c["images"] = images;
@@ -188,8 +190,8 @@ int RunAdvise(const Args& a) {
   doc["closest"] = r.selection.closest;
   doc["defaults"] = r.defaults;
   if (r.selection.best) {
-    doc["technique_option"] = advise::ConfigText(m[*r.selection.best].config);
-    doc["cpp"] = advise::CppSnippet(m[*r.selection.best].config);
+    doc["technique_option"] = advise::ShortText(m[*r.selection.best].config);
+    doc["cpp"] = advise::CppSnippet(advise::WithoutDefaults(m[*r.selection.best].config));
   }
   advise::WriteAtomically(o.out / "advise.json", doc.dump(1) + "\n");
 

@@ -33,7 +33,7 @@ void Help() {
       "  report  results.json... --out dir [--title text]\n"
       "          charts and an HTML page from bench results (eval/report/report.py)\n"
       "  advise  --scene S --budget METRIC=V [--budget ...] [--backend vulkan|gl] [--size WxH] [--frames N] [--path NAME]\n"
-      "          [--techniques T[,T...]] [--minimize ms|memory] [--axes P[,P...]] [--noise F] [--max-runs N] [--max-resolution N] [--exhaustive]\n"
+      "          [--techniques T[,T...]] [--minimize ms|memory] [--axes P[,P...]] [--noise F] [--max-runs N] [--max-resolution N] [--confirm N] [--exhaustive]\n"
       "          [--cache dir] [--no-report] --out dir\n"
       "          the cheapest configuration meeting every budget (metrics: misclassified, false_lit, false_shadow,\n"
       "          mean_abs_error, flicker, ms, memory): a coarse sweep of each technique's resolution, cascades,\n"

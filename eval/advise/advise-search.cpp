@@ -1,5 +1,6 @@
 // The search: a coarse sweep over each technique's axes, then rounds of refinement around the
 // Pareto front, every configuration measured once by the bench and kept in a JSON cache.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -202,8 +203,9 @@ SearchResult Search(const SearchOptions& o, const std::function<void(const std::
     }
   }
 
-  auto measure = [&](const Config& c) {
-    if (index.count(c)) return;
+  // The bench record of one configuration: from the cache, or measured and cached. `repeat` > 0
+  // is a further timing of the same configuration (the confirmation below).
+  auto record = [&](const Config& c, int repeat) -> nlohmann::json {
     if (o.interrupt && o.interrupt->load()) {
       writeState(false);
       throw Interrupted("interrupted after " + std::to_string(res.measured.size()) + " configurations");
@@ -212,27 +214,27 @@ SearchResult Search(const SearchOptions& o, const std::function<void(const std::
     nlohmann::json key = {{"scene", sc.name},    {"scene_arg", o.scene}, {"path", o.path}, {"backend", BackendName(o.backend)},
                           {"size", {o.width, o.height}}, {"frames", o.frames}, {"technique", c.technique},
                           {"params", full.all()}, {"revision", res.revision}};
+    if (repeat) key["repeat"] = repeat;
     std::string k = key.dump();
-    Measurement m;
-    m.config = c;
     if (const nlohmann::json* hit = cache.find(k)) {
-      m.record = *hit;
       ++res.fromCache;
-    } else {
-      auto t0 = std::chrono::steady_clock::now();
-      bench::RunSpec spec;
-      spec.scene = &sc;
-      spec.technique = c.technique;
-      spec.params = c.params;
-      spec.backend = o.backend;
-      spec.width = o.width;
-      spec.height = o.height;
-      spec.frames = o.frames;
-      spec.path = &path;
-      bench::RunResult r = bench::RunOne(spec, reference);
-      // Pictures of the path's first frame, as bench writes them, named by the key's hash.
-      std::string stem = "images/" + Hex(Fnv(14695981039346656037ull, k.data(), k.size())) + "-" + Slug(ConfigText(c));
-      std::map<std::string, std::string> images;
+      return *hit;
+    }
+    auto t0 = std::chrono::steady_clock::now();
+    bench::RunSpec spec;
+    spec.scene = &sc;
+    spec.technique = c.technique;
+    spec.params = c.params;
+    spec.backend = o.backend;
+    spec.width = o.width;
+    spec.height = o.height;
+    spec.frames = o.frames;
+    spec.path = &path;
+    bench::RunResult r = bench::RunOne(spec, reference);
+    // Pictures of the path's first frame, as bench writes them, named by the key's hash.
+    std::map<std::string, std::string> images;
+    if (!repeat) {
+      std::string stem = "images/" + Hex(Fnv(14695981039346656037ull, k.data(), k.size())) + "-" + Slug(ShortText(c));
       const tech::LabBuffers& f = r.firstFrame;
       uint32_t h = 0;
       eval::WritePng(cache.dir() / (stem + "-color.png"), f.width, f.height, f.color.data());
@@ -247,12 +249,20 @@ SearchResult Search(const SearchOptions& o, const std::function<void(const std::
       if (!fs::exists(cache.dir() / refImage))
         eval::WritePng(cache.dir() / refImage, f.width, f.height, eval::ReferenceImage(f, r.firstReference.data(), r.light).data());
       images["reference"] = refImage;
-      m.record = bench::RunToJson(r, images);
-      m.record["advise_key"] = key;
-      cache.put(k, m.record);
-      ++res.newMeasurements;
-      newSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     }
+    nlohmann::json rec = bench::RunToJson(r, images);
+    rec["advise_key"] = key;
+    cache.put(k, rec);
+    ++res.newMeasurements;
+    newSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return rec;
+  };
+
+  auto measure = [&](const Config& c) {
+    if (index.count(c)) return;
+    Measurement m;
+    m.config = c;
+    m.record = record(c, 0);
     m.metrics = MetricsOf(m.record);
     index[c] = res.measured.size();
     res.measured.push_back(std::move(m));
@@ -261,9 +271,9 @@ SearchResult Search(const SearchOptions& o, const std::function<void(const std::
     // Progress: n / planned, best so far, time left at the mean time of a new measurement.
     std::ostringstream line;
     line << "measured " << res.measured.size() << "/" << planned.size() << " (" << phase << "; " << res.newMeasurements << " new, "
-         << res.fromCache << " cached): " << ConfigText(c) << ": " << Figures(res.measured.back(), o.select);
+         << res.fromCache << " cached): " << ShortText(c) << ": " << Figures(res.measured.back(), o.select);
     Selection s = Select(res.measured, o.select);
-    if (s.best) line << "; best so far " << ConfigText(res.measured[*s.best].config) << " (" << Figures(res.measured[*s.best], o.select) << ")";
+    if (s.best) line << "; best so far " << ShortText(res.measured[*s.best].config) << " (" << Figures(res.measured[*s.best], o.select) << ")";
     else line << "; nothing meets the budget yet";
     if (res.newMeasurements) {
       size_t left = 0;
@@ -290,9 +300,10 @@ SearchResult Search(const SearchOptions& o, const std::function<void(const std::
       std::to_string(o.height) + ", " + std::to_string(o.frames) + " frames)");
   for (size_t i = 0; i < planned.size() && res.measured.size() < o.maxRuns; ++i) measure(planned[i]);
 
-  // Refinement: one lattice step around every front member that could change the answer (those
-  // meeting the budgets, the cheaper ones that miss), and around the current choice, until a round
-  // adds nothing.
+  // Refinement: one lattice step around the configurations that could change the answer, most
+  // promising first (so --max-runs cuts the least useful): the current choice, the closest cheaper
+  // miss, the front members cheaper than the choice, and the next front member above it; until a
+  // round adds nothing. Without a choice yet: around the whole front and the closest misses.
   auto axesOf = [&](const std::string& name) -> const std::vector<Axis>& {
     for (const Tech& t : techs)
       if (t.spec.name == name) return t.axes;
@@ -302,24 +313,70 @@ SearchResult Search(const SearchOptions& o, const std::function<void(const std::
     std::vector<size_t> front = ParetoFront(res.measured, o.select);
     Selection s = Select(res.measured, o.select);
     std::vector<size_t> seeds;
-    for (size_t i : front) {
-      bool meets = MeetsBudgets(res.measured[i], o.select.budgets);
-      bool cheaper = s.best && CostOf(res.measured[i], o.select.minimize) < CostOf(res.measured[*s.best], o.select.minimize);
-      if (!s.best || meets || cheaper) seeds.push_back(i);
+    if (s.best) {
+      seeds.push_back(*s.best);
+      if (s.cheaperMiss) seeds.push_back(*s.cheaperMiss);
+      const double bestCost = CostOf(res.measured[*s.best], o.select.minimize);
+      bool above = false;
+      for (size_t i : front) {
+        double c = CostOf(res.measured[i], o.select.minimize);
+        if (c < bestCost) seeds.push_back(i);
+        else if (c > bestCost && !above && MeetsBudgets(res.measured[i], o.select.budgets)) {
+          seeds.push_back(i);
+          above = true;
+        }
+      }
+    } else {
+      seeds = s.closest;
+      seeds.insert(seeds.end(), front.begin(), front.end());
     }
-    if (s.best) seeds.push_back(*s.best);
-    if (s.cheaperMiss) seeds.push_back(*s.cheaperMiss);
-    for (size_t i : s.closest) seeds.push_back(i);
     size_t before = planned.size();
     for (size_t i : seeds)
       for (const Config& n : Neighbours(res.measured[i].config, axesOf(res.measured[i].config.technique))) plan(n);
     if (planned.size() == before) break;
     phase = "refinement round " + std::to_string(round);
-    say(phase + ": " + std::to_string(planned.size() - before) + " neighbours of " + std::to_string(seeds.size()) + " front members");
+    say(phase + ": " + std::to_string(planned.size() - before) + " neighbours of " + std::to_string(seeds.size()) + " configurations on or near the front");
     for (size_t i = before; i < planned.size() && res.measured.size() < o.maxRuns; ++i) measure(planned[i]);
   }
   if (res.measured.size() >= o.maxRuns && res.measured.size() < planned.size())
     say("stopped at --max-runs " + std::to_string(o.maxRuns) + " configurations");
+
+  // Confirmation: GPU ms of one run moves 10-30 % with the other jobs on a CPU rasterizer, so the
+  // configurations the answer and the comparison rest on (every one meeting the budgets within
+  // twice the noise margin of the choice, the closest cheaper miss, the defaults) are timed again,
+  // `confirm` runs in all, and their ms is the median over the runs. Then the choice is made again.
+  if (o.select.minimize == Minimize::Ms && o.confirm > 1) {
+    Selection s = Select(res.measured, o.select);
+    std::set<size_t> which;
+    for (const Tech& t : techs) {
+      Config d{t.spec.name, t.spec.params};
+      for (const Axis& a : t.axes) d.params[a.name] = a.defaultValue;
+      if (index.count(d)) which.insert(index[d]);
+    }
+    if (s.best) {
+      double limit = CostOf(res.measured[*s.best], Minimize::Ms) / std::pow(1.0 - o.select.noise, 2.0);
+      for (size_t i = 0; i < res.measured.size(); ++i)
+        if (MeetsBudgets(res.measured[i], o.select.budgets) && CostOf(res.measured[i], Minimize::Ms) <= limit) which.insert(i);
+      if (s.cheaperMiss) which.insert(*s.cheaperMiss);
+    }
+    phase = "confirming the timings";
+    say(phase + " of " + std::to_string(which.size()) + " configurations (" + std::to_string(o.confirm) + " runs each, median GPU ms)");
+    for (size_t i : which) {
+      Measurement& m = res.measured[i];
+      std::vector<double> ms = {MetricOf(m.record, "ms")};
+      for (int rep = 1; rep < o.confirm; ++rep) ms.push_back(MetricOf(record(m.config, rep), "ms"));
+      std::vector<double> sorted = ms;
+      std::sort(sorted.begin(), sorted.end());
+      size_t n = sorted.size();
+      m.metrics["ms"] = n % 2 ? sorted[n / 2] : 0.5 * (sorted[n / 2 - 1] + sorted[n / 2]);
+      m.msRuns = ms;
+      std::ostringstream line;
+      line << "  " << ShortText(m.config) << ": GPU ms";
+      for (double v : ms) line << " " << std::fixed << std::setprecision(1) << v;
+      line << " -> median " << m.metrics["ms"];
+      say(line.str());
+    }
+  }
 
   res.planned = planned.size();
   res.front = ParetoFront(res.measured, o.select);

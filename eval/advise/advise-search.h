@@ -23,6 +23,7 @@ struct SearchOptions {
   std::filesystem::path cache;  // empty: <out>/cache
   size_t maxRuns = 200;         // configurations measured at most (cached ones count)
   bool exhaustive = false;      // every lattice point instead of the search
+  int confirm = 3;              // runs timing each configuration the answer rests on (ms only)
   // Set (e.g. by SIGINT) to stop after the measurement in progress; the search then throws
   // Interrupted with the cache and state file written.
   const std::atomic<bool>* interrupt = nullptr;

@@ -55,6 +55,17 @@ std::string ConfigText(const Config& c) {
   return s;
 }
 
+Config WithoutDefaults(const Config& c) {
+  Config shorter = c;
+  for (const tech::ParamSpec& p : tech::CreateTechnique(c.technique)->Params()) {
+    auto it = shorter.params.find(p.name);
+    if (it != shorter.params.end() && it->second == p.defaultValue) shorter.params.erase(it);
+  }
+  return shorter;
+}
+
+std::string ShortText(const Config& c) { return ConfigText(WithoutDefaults(c)); }
+
 double MetricOf(const nlohmann::json& r, const std::string& metric) {
   const nlohmann::json& m = r.at("metrics");
   if (metric == "ms") return m.at("gpu_ms").at("total").get<double>();

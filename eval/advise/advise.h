@@ -43,11 +43,15 @@ struct Config {
 };
 // `csm:cascades=2:resolution=1024` (bench's --technique form); `csm` when nothing is set.
 std::string ConfigText(const Config& c);
+// Without the parameters at their defaults (what a user types); needs the registry.
+Config WithoutDefaults(const Config& c);
+std::string ShortText(const Config& c);  // ConfigText(WithoutDefaults(c))
 
 struct Measurement {
   Config config;
   std::map<std::string, double> metrics;  // BudgetMetrics() names -> value
   nlohmann::json record;                  // the bench record (RunToJson), images relative to the cache
+  std::vector<double> msRuns;             // GPU ms of each run when the timing was confirmed
 };
 // A bench record's value for a budget metric name (gpu ms total for "ms", MiB for "memory").
 double MetricOf(const nlohmann::json& record, const std::string& metric);
