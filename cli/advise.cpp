@@ -136,7 +136,8 @@ int RunAdvise(const Args& a) {
   std::printf("advise: %s on %s, %ux%u, %u frames; budget %s; minimizing %s%s\n", o.scene.c_str(), BackendName(o.backend), o.width, o.height,
               o.frames, budgets.c_str(), advise::MinimizeName(so.minimize),
               so.minimize == advise::Minimize::Ms ? (" (GPU ms within " + std::to_string(int(so.noise * 100 + 0.5)) + " % are ties: less memory wins)").c_str() : "");
-  std::printf("configurations: %zu measured by the search (%zu new, %zu from the cache)\n\n", m.size(), r.newMeasurements, r.fromCache);
+  std::printf("configurations: %zu measured by the search (%zu new, %zu from the cache); %zu further timing runs (%zu new)\n\n", m.size(),
+              r.newMeasurements, r.fromCache, r.timingRuns + r.timingRunsFromCache, r.timingRuns);
   std::printf("Pareto front (%s against %s):\n\n%s\n", advise::MinimizeName(so.minimize), so.budgets[0].metric.c_str(), kHeader);
   for (size_t i : r.front) std::printf("%s\n", Row(m[i], so, r.selection.best == i ? "**>**" : " ").c_str());
 
@@ -171,6 +172,8 @@ int RunAdvise(const Args& a) {
   doc["revision"] = r.revision;
   doc["new_measurements"] = r.newMeasurements;
   doc["from_cache"] = r.fromCache;
+  doc["timing_runs"] = r.timingRuns + r.timingRunsFromCache;
+  doc["new_timing_runs"] = r.timingRuns;
   doc["planned"] = r.planned;
   doc["exhaustive"] = o.exhaustive;
   fs::path relCache = fs::relative(fs::absolute(r.cacheDir), fs::absolute(o.out));
@@ -178,6 +181,7 @@ int RunAdvise(const Args& a) {
   for (size_t i = 0; i < m.size(); ++i) {
     nlohmann::json c = {{"config", advise::ShortText(m[i].config)}, {"full_config", advise::ConfigText(m[i].config)}, {"technique", m[i].config.technique}, {"params", m[i].config.params},
                         {"metrics", m[i].metrics}, {"meets", advise::MeetsBudgets(m[i], so.budgets)}, {"ms_runs", m[i].msRuns}};
+    if (m[i].sameAs) c["same_as"] = advise::ShortText(m[*m[i].sameAs].config);
     nlohmann::json images = m[i].record.value("images", nlohmann::json::object());
     for (auto& [k, v] : images.items()) v = (relCache / v.get<std::string>()).string();
     c["images"] = images;

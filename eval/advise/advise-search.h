@@ -38,6 +38,7 @@ struct SearchResult {
   Selection selection;
   std::vector<size_t> front;
   size_t newMeasurements = 0, fromCache = 0, planned = 0;
+  size_t timingRuns = 0, timingRunsFromCache = 0;  // the confirmation's further runs
   std::vector<size_t> defaults;  // each technique's all-default configuration (measured too)
   std::filesystem::path cacheDir;
   std::string revision;

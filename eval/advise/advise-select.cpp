@@ -113,6 +113,7 @@ std::vector<size_t> ParetoFront(const std::vector<Measurement>& all, const Selec
   std::vector<size_t> front;
   double bestError = std::numeric_limits<double>::infinity();
   for (size_t i : order) {
+    if (all[i].sameAs) continue;
     double e = ErrorOf(all[i], o);
     if (e < bestError) {
       front.push_back(i);
@@ -139,11 +140,13 @@ double Excess(const Measurement& m, const std::vector<Budget>& budgets) {
 Selection Select(const std::vector<Measurement>& all, const SelectOptions& o) {
   Selection s;
   std::vector<size_t> ok;
-  for (size_t i = 0; i < all.size(); ++i)
+  std::vector<size_t> order;
+  for (size_t i = 0; i < all.size(); ++i) {
+    if (all[i].sameAs) continue;
+    order.push_back(i);
     if (MeetsBudgets(all[i], o.budgets)) ok.push_back(i);
+  }
   if (ok.empty()) {
-    std::vector<size_t> order(all.size());
-    for (size_t i = 0; i < order.size(); ++i) order[i] = i;
     std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
       double xa = Excess(all[a], o.budgets), xb = Excess(all[b], o.budgets);
       if (xa != xb) return xa < xb;
@@ -172,7 +175,7 @@ Selection Select(const std::vector<Measurement>& all, const SelectOptions& o) {
   // misses, i.e. the one just below it on the cost axis.
   const double bestCost = CostOf(all[*s.best], o.minimize);
   for (size_t i = 0; i < all.size(); ++i) {
-    if (MeetsBudgets(all[i], o.budgets) || CostOf(all[i], o.minimize) >= bestCost) continue;
+    if (all[i].sameAs || MeetsBudgets(all[i], o.budgets) || CostOf(all[i], o.minimize) >= bestCost) continue;
     if (!s.cheaperMiss || CostOf(all[i], o.minimize) > CostOf(all[*s.cheaperMiss], o.minimize) ||
         (CostOf(all[i], o.minimize) == CostOf(all[*s.cheaperMiss], o.minimize) && ErrorOf(all[i], o) < ErrorOf(all[*s.cheaperMiss], o)))
       s.cheaperMiss = i;

@@ -52,6 +52,10 @@ struct Measurement {
   std::map<std::string, double> metrics;  // BudgetMetrics() names -> value
   nlohmann::json record;                  // the bench record (RunToJson), images relative to the cache
   std::vector<double> msRuns;             // GPU ms of each run when the timing was confirmed
+  std::string fingerprint;                // what it rendered (advise-search.cpp)
+  // Set when it rendered exactly what an earlier configuration did: left out of the front and the
+  // choice (only timing noise could tell them apart).
+  std::optional<size_t> sameAs;
 };
 // A bench record's value for a budget metric name (gpu ms total for "ms", MiB for "memory").
 double MetricOf(const nlohmann::json& record, const std::string& metric);

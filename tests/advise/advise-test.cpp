@@ -89,6 +89,17 @@ TEST(AdviseSelect, ImpossibleBudgetGivesTheClosest) {
   EXPECT_EQ(s.closest, (std::vector<size_t>{2, 1, 0}));
 }
 
+TEST(AdviseSelect, AConfigurationThatRenderedTheSameAsAnEarlierOneIsLeftOut) {
+  std::vector<Measurement> all = {M("a", "1024", 30, 4, 0.2), M("a", "1024k5", 12, 4, 0.2), M("a", "2048", 25, 16, 0.1)};
+  all[1].sameAs = 0;  // e.g. kernel=5 under the hardware 2x2 filter: only noise makes it "faster"
+  Selection s = Select(all, Opts(0.5));
+  ASSERT_TRUE(s.best);
+  EXPECT_EQ(*s.best, 2u);  // not the duplicate's 12 ms; 30 ms is beyond 15 % of 25 ms
+  EXPECT_EQ(ParetoFront(all, Opts(0.5)), (std::vector<size_t>{2}));
+  all[1].sameAs.reset();
+  EXPECT_EQ(*Select(all, Opts(0.5)).best, 1u);
+}
+
 TEST(AdviseSelect, DeterministicOnExactTies) {
   std::vector<Measurement> all = {M("b", "512", 5, 1, 0.1), M("a", "512", 5, 1, 0.1)};
   Selection s = Select(all, Opts(0.5, Minimize::Memory));
