@@ -225,6 +225,15 @@ std::vector<Axis> AxesFor(const std::string& technique, const std::vector<tech::
     if (p->kind == tech::ParamSpec::Choice) {
       a.values = p->choices;
       a.coarse = {p->defaultValue};
+      for (const std::string& v : p->choices) {
+        size_t used = 0;
+        try {
+          std::stod(v, &used);
+        } catch (const std::exception&) {
+          used = 0;
+        }
+        if (used == 0 || used != v.size()) a.ordered = false;
+      }
     } else if (p->kind == tech::ParamSpec::Int && name == "resolution") {
       for (int r = 256; r <= maxResolution; r *= 2) {
         if (InRange(*p, r)) a.values.push_back(Num(r));
@@ -286,8 +295,8 @@ std::vector<Config> Neighbours(const Config& c, const std::vector<Axis>& axes) {
     auto pos = std::find(a.values.begin(), a.values.end(), it->second);
     if (pos == a.values.end()) continue;
     size_t i = size_t(pos - a.values.begin());
-    for (size_t j : {i - 1, i + 1}) {
-      if (j >= a.values.size()) continue;  // i - 1 wraps when i == 0
+    for (size_t j = 0; j < a.values.size(); ++j) {
+      if (j == i || (a.ordered && j + 1 != i && j != i + 1)) continue;
       Config n = c;
       n.params[a.name] = a.values[j];
       out.push_back(std::move(n));

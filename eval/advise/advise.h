@@ -101,11 +101,16 @@ struct Axis {
   std::vector<std::string> values;  // the lattice, in order (neighbours are adjacent)
   std::vector<std::string> coarse;  // the first sweep's values
   std::string defaultValue;
+  // Numbers (resolution, cascades, kernel widths) have an order and a step is to the next value;
+  // names (filter, bias) have none, so every other value is one step away: along an arbitrary
+  // order the search missed bias=receiver-plane behind a bad bias=normal (docs/lab.md).
+  bool ordered = true;
 };
 // The axes of `technique` among `names` (those it declares), each a lattice derived from its spec:
 // Int resolution: powers of two and their midpoints (256, 384, 512, ... 4096) within the range,
 // coarse 512, 1024, 2048; cascades: 1..4 within the range, coarse 1, 2, 4; depth_bias: the default
-// times 1/4, 1/2, 1, 2, 4; Choice: every choice, coarse the default only.
+// times 1/4, 1/2, 1, 2, 4; Choice: every choice, coarse the default only (ordered when every
+// choice is a number).
 // `maxResolution` caps the resolution lattice (the default is kept even above it).
 std::vector<Axis> AxesFor(const std::string& technique, const std::vector<tech::ParamSpec>& specs, const std::vector<std::string>& names,
                           int maxResolution = 4096);
@@ -114,7 +119,7 @@ std::vector<Axis> AxesFor(const std::string& technique, const std::vector<tech::
 std::vector<Config> CoarseGrid(const std::string& technique, const std::vector<Axis>& axes);
 // Every lattice combination (the exhaustive sweep).
 std::vector<Config> FullGrid(const std::string& technique, const std::vector<Axis>& axes);
-// The configurations one lattice step away from `c` along one axis.
+// The configurations one step away from `c` along one axis (see Axis::ordered).
 std::vector<Config> Neighbours(const Config& c, const std::vector<Axis>& axes);
 
 // --- Output helpers

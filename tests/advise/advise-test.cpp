@@ -137,10 +137,19 @@ TEST(AdviseSpace, NeighboursAreOneLatticeStepAlongOneAxis) {
   std::vector<Axis> axes = AxesFor("t", Specs(), {"resolution", "filter"});
   Config c{"t", {{"resolution", "1024"}, {"filter", "hw2x2"}}};
   std::vector<Config> n = Neighbours(c, axes);
-  ASSERT_EQ(n.size(), 3u);  // 768, 1536; box (hw2x2 is the first choice)
+  ASSERT_EQ(n.size(), 4u);  // 768, 1536; filter names have no order: every other one
   EXPECT_EQ(n[0].params.at("resolution"), "768");
   EXPECT_EQ(n[1].params.at("resolution"), "1536");
   EXPECT_EQ(n[2].params.at("filter"), "box");
+  EXPECT_EQ(n[3].params.at("filter"), "gauss");
+  using P = tech::ParamSpec;
+  std::vector<Axis> kernel = AxesFor("t", {{P::Choice, "kernel", "", "5", 0, 0, {"3", "5", "7", "9"}}}, {"kernel"});
+  EXPECT_TRUE(kernel[0].ordered);
+  EXPECT_FALSE(axes[1].ordered);
+  std::vector<Config> k = Neighbours(Config{"t", {{"kernel", "5"}}}, kernel);
+  ASSERT_EQ(k.size(), 2u);  // numbers: the next width either side
+  EXPECT_EQ(k[0].params.at("kernel"), "3");
+  EXPECT_EQ(k[1].params.at("kernel"), "7");
 }
 
 TEST(AdviseOutput, TechniqueLineAndCpp) {
