@@ -32,6 +32,13 @@ void Help() {
       "          viewer, 90 across, 180 towards it: duelling frusta), as scenes named <scene>-gamma<DEG>\n"
       "  report  results.json... --out dir [--title text]\n"
       "          charts and an HTML page from bench results (eval/report/report.py)\n"
+      "  advise  --scene S --budget METRIC=V [--budget ...] [--backend vulkan|gl] [--size WxH] [--frames N] [--path NAME]\n"
+      "          [--techniques T[,T...]] [--minimize ms|memory] [--axes P[,P...]] [--noise F] [--max-runs N] [--max-resolution N] [--confirm N] [--exhaustive]\n"
+      "          [--cache dir] [--no-report] --out dir\n"
+      "          the cheapest configuration meeting every budget (metrics: misclassified, false_lit, false_shadow,\n"
+      "          mean_abs_error, flicker, ms, memory): a coarse sweep of each technique's resolution, cascades,\n"
+      "          filter, kernel and bias, refined around the Pareto front; measurements are cached (rerun to resume);\n"
+      "          prints the front, the --technique line and C++, writes dir/index.html\n"
       "  conformance [--backend vulkan|gl|both] [--out dir] [--filter text] [--verbose]\n"
       "          runs the D3D11 conformance probes; prints the feature x backend table, writes Markdown and JSON\n"
       "  hlslc   file.hlsl -T vs_5_0|ps_5_0|cs_5_0 [-E entry] [-D NAME[=VALUE]] [-I dir] [-Fo out]\n"
@@ -56,6 +63,7 @@ int main(int argc, char** argv) {
     if (cmd == "hlslc") return sp::cli::RunHlslc(rest);
     if (cmd == "bench") return sp::cli::RunBench(sp::cli::Args(rest, {"validate"}));
     if (cmd == "report") return sp::cli::RunReport(sp::cli::Args(rest));
+    if (cmd == "advise") return sp::cli::RunAdvise(sp::cli::Args(rest, {"exhaustive", "no-report"}));
     if (cmd == "conformance") return sp::cli::RunConformance(sp::cli::Args(rest, {"verbose"}));
     std::fprintf(stderr, "shadowport: unknown command '%s'\n", cmd.c_str());
     Help();
