@@ -423,7 +423,7 @@ std::string Serialize(const ParseOutcome& o) {
     isolation::PutU32(out, uint32_t(d.line));
     isolation::PutString(out, d.message);
   }
-  isolation::PutString(out, std::string(reinterpret_cast<const char*>(o.spirv.data()), o.spirv.size() * 4));
+  isolation::PutString(out, o.spirv.empty() ? std::string() : std::string(reinterpret_cast<const char*>(o.spirv.data()), o.spirv.size() * 4));
   return out;
 }
 
@@ -442,7 +442,7 @@ bool Deserialize(const std::string& bytes, ParseOutcome* o) {
   std::string words = r.String();
   if (!r.ok() || words.size() % 4) return false;
   o->spirv.resize(words.size() / 4);
-  std::memcpy(o->spirv.data(), words.data(), words.size());
+  if (!words.empty()) std::memcpy(o->spirv.data(), words.data(), words.size());  // data() of an empty vector may be null
   return true;
 }
 
