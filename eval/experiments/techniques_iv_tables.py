@@ -5,25 +5,10 @@
 
 The accuracy columns are the Vulkan run's; the script checks that the GL run of the same scene and
 parameters gives the same values ("same on GL")."""
-import json
 import sys
-from pathlib import Path
 
-ACCURACY = ["misclassified_pct", "false_lit_pct", "false_shadow_pct", "texels_per_pixel_median", "texels_per_pixel_p05"]
-
-
-def load(out, name):
-    runs = json.loads((Path(out) / f"{name}.json").read_text())["runs"]
-    pairs = {}
-    for r in runs:
-        key = (r["scene"], r["technique"], json.dumps(r["params"], sort_keys=True))
-        pairs.setdefault(key, {})[r["backend"]] = r
-    rows = []
-    for by in pairs.values():
-        vk, gl = by.get("vulkan"), by.get("gl")
-        same = vk is not None and gl is not None and all(vk["metrics"][k] == gl["metrics"][k] for k in ACCURACY)
-        rows.append((vk or gl, gl, same))
-    return rows
+# The same pairing of Vulkan and GL runs as part I (and its "same on GL" test over its accuracy metrics).
+from techniques_i_tables import load
 
 
 def table(rows, varying, title):
