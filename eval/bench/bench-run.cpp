@@ -93,7 +93,7 @@ RunResult RunOne(const RunSpec& spec, eval::ReferenceCache& reference, const Pro
   say(what + ": timing " + std::to_string(spec.frames) + " frames");
   tech::GpuTimer timer(*device);
   renderer.SetGpuTimer(&timer);
-  std::vector<double> triangles;
+  std::vector<double> triangles, layers;
   for (uint32_t i = 0; i < spec.frames; ++i) {
     // One frame at a time: the GPU is idle when a frame starts, so its CPU time holds no wait for
     // (and, on a software device, no competition with) the previous frame's GPU work.
@@ -103,6 +103,7 @@ RunResult RunOne(const RunSpec& spec, eval::ReferenceCache& reference, const Pro
     ctx.Flush();  // what Present would do: submission is part of a frame's CPU cost
     r.cpuSeries.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
     triangles.push_back(double(tech.Stats().trianglesSubmitted));
+    layers.push_back(double(tech.Stats().layersRendered));
   }
   std::vector<tech::FrameTimes> times = timer.Collect(ctx, true);
   renderer.SetGpuTimer(nullptr);
@@ -114,6 +115,7 @@ RunResult RunOne(const RunSpec& spec, eval::ReferenceCache& reference, const Pro
   for (const auto& [pass, v] : perPass) r.gpuMs[pass] = Median(v);
   r.cpuMs = Median(AfterWarmup(r.cpuSeries));
   r.shadowTriangles = uint64_t(Median(AfterWarmup(triangles)));
+  r.shadowLayersRendered = uint64_t(Median(AfterWarmup(layers)));
   r.shadowMemoryBytes = tech.Stats().memoryBytes;
 
   // --- 2. Measurement: the lab's lit pass, read back and judged.

@@ -148,6 +148,7 @@ nlohmann::json RunToJson(const RunResult& r, const std::map<std::string, std::st
       {"cpu_ms", Round(r.cpuMs, 1e4)},
       {"shadow_memory_bytes", r.shadowMemoryBytes},
       {"shadow_triangles", r.shadowTriangles},
+      {"shadow_layers_rendered", r.shadowLayersRendered},
   };
   json params = json::object(), given = json::object();
   for (const auto& [k, v] : r.params) params[k] = v;

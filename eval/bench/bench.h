@@ -63,6 +63,7 @@ struct RunResult {
   std::map<std::string, double> gpuMs;      // pass -> median ms, and "total"
   double cpuMs = 0;                         // median
   uint64_t shadowMemoryBytes = 0, shadowTriangles = 0;
+  uint64_t shadowLayersRendered = 0;  // median per frame; 0 when the technique does not count them
 
   std::vector<double> flickerSeries;        // frames 1..N-1
   std::vector<double> misclassifiedSeries, gpuTotalSeries, cpuSeries;  // frames 0..N-1

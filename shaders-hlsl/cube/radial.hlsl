@@ -20,4 +20,4 @@ VSOut VSMain(float3 pos : POSITION) {
   return o;
 }
 
-float PSMain(VSOut i) : SV_Target { return length(i.worldPos - cubeLightPos); }
+float PSMain(VSOut i) : SV_Target { return length(i.worldPos - cubePassLightPos); }

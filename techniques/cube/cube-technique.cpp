@@ -1,22 +1,40 @@
-// The cube technique: omnidirectional shadows of one point light in a TextureCube of depth (King,
+// The cube technique: omnidirectional shadows of point lights in TextureCubes of depth (King,
 // "Shadow Mapping Algorithms"). Six 90-degree faces, one DSV per face, each storing planar window z
 // with the same near and far on every face, so the lit pass computes the reference depth from the
 // major axis alone (z = a + b / max(|x|, |y|, |z|)) and compares with SampleCmpLevelZero on the
-// TextureCube: seamless 2x2 hardware PCF across face edges. Casters are culled per face against
-// the face frustum, and faces whose frustum does not meet the camera's are skipped (cull_faces);
-// D3D11 rasterizer depth bias as in basic. The directional light is unshadowed.
+// TextureCube: seamless 2x2 hardware PCF across face edges, and wider kernels whose taps step
+// across the edges onto the neighbouring face (shaders-hlsl/cube/shadow.hlsli). D3D11 rasterizer
+// depth bias as in basic. The directional light is unshadowed.
+//
+// lights=one shadows the point light `light`; lights=all shadows up to `max_lights` of the scene's
+// point lights, chosen per frame as King advises spending a budget: a light whose range sphere
+// meets no visible receiver gets no map, the others are ranked by their size on screen and, with
+// resolution_from=screen, each gets a face resolution from it (a light far away gets a small
+// cube). Per face, casters are culled against the face frustum, and a face is skipped when its
+// frustum meets neither the camera's nor any visible receiver (cull_faces).
 //
 // storage=radial: the variant for hardware without depth cube maps, to measure the difference: an
 // R32_FLOAT cube of light-to-caster distance (rendered with a D32 depth buffer per face), compared
-// in the shader on a 2x2 Gather with bilinear weights and a receiver slope bias (no rasterizer
+// in the shader on 2x2 Gathers with bilinear weights and a receiver slope bias (no rasterizer
 // bias reaches a colour target).
+#include <algorithm>
 #include <stdexcept>
 
+#include "cube/cube-culling.h"
 #include "cube/cube-faces.h"
 #include <sp/tech/technique.h>
 
 namespace sp::tech {
 namespace {
+
+// Cube maps one frame may hold (t0..t7 of the lighting include).
+constexpr uint32_t kMaxCubeSlots = 8;
+
+uint32_t NextPowerOfTwo(float x) {
+  uint32_t r = 1;
+  while (float(r) < x && r < (1u << 30)) r <<= 1;
+  return r;
+}
 
 class CubeTechnique final : public Technique {
  public:
@@ -24,19 +42,27 @@ class CubeTechnique final : public Technique {
 
   std::vector<ParamSpec> Params() const override {
     return {
-        {ParamSpec::Int, "light", "the point light shadowed (index into the scene's point lights = local light index)", "0", 0, kMaxLocalLights - 1, {}},
-        {ParamSpec::Int, "resolution", "width and height of each cube face in texels", "512", 16, 8192, {}},
+        {ParamSpec::Int, "light", "the point light shadowed (lights=one) or judged by the lab (lights=all): index into the scene's point lights = local light index", "0", 0, kMaxLocalLights - 1, {}},
+        {ParamSpec::Int, "resolution", "width and height of each cube face in texels (resolution_from=screen: the largest)", "512", 16, 8192, {}},
         {ParamSpec::Float, "near", "near plane of every face, in world units (casters closer to the light are not drawn)", "0.05", 1e-4, 1e3, {}},
         {ParamSpec::Int, "depth_bias", "D3D11 DepthBias (units of the depth format)", "200", -1e7, 1e7, {}},
         {ParamSpec::Float, "slope_bias", "D3D11 SlopeScaledDepthBias (storage=depth)", "2.0", -100, 100, {}},
         {ParamSpec::Choice, "storage", "depth: planar window z in a depth cube, hardware comparison; radial: distance in an R32_FLOAT cube, compared in the shader", "depth", 0, 0, {"depth", "radial"}},
         {ParamSpec::Float, "radial_bias", "storage=radial: constant bias in world units", "0.01", 0, 1e3, {}},
-        {ParamSpec::Int, "cull_faces", "1: skip the faces whose frustum (widened by two texels, for the filter across edges) does not meet the camera's", "1", 0, 1, {}},
+        {ParamSpec::Int, "cull_faces", "1: skip the faces whose frustum (widened by the filter's reach) meets neither the camera's nor a visible receiver", "1", 0, 1, {}},
         {ParamSpec::Float, "radial_slope_bias", "storage=radial: bias in texel footprints times tan(angle to the light), at most 10", "1.5", 0, 100, {}},
+        {ParamSpec::Choice, "filter", "comparison filter: the hardware's seamless 2x2, or box/gauss kernels whose taps cross face edges", "hw2x2", 0, 0, {"hw2x2", "box", "gauss"}},
+        {ParamSpec::Choice, "kernel", "filter kernel width in texels (box, gauss)", "3", 0, 0, {"3", "5", "7", "9"}},
+        {ParamSpec::Choice, "lights", "one: the point light `light`; all: up to max_lights point lights, those lighting visible receivers, largest on screen first", "one", 0, 0, {"one", "all"}},
+        {ParamSpec::Int, "max_lights", "lights=all: most point lights shadowed per frame (the rest stay unshadowed)", "8", 1, kMaxCubeSlots, {}},
+        {ParamSpec::Choice, "resolution_from", "fixed: every cube at `resolution`; screen: each light's from the screen size of its range sphere, between min_resolution and resolution", "fixed", 0, 0, {"fixed", "screen"}},
+        {ParamSpec::Int, "min_resolution", "resolution_from=screen: the smallest face resolution", "64", 16, 8192, {}},
+        {ParamSpec::Float, "texels_per_pixel", "resolution_from=screen: face texels per screen pixel across the light's range sphere", "1.0", 0.01, 100, {}},
     };
   }
 
   void Configure(Device& device, const ParamValues& p) override {
+    device_ = &device;
     light_ = uint32_t(p.getInt("light"));
     resolution_ = uint32_t(p.getInt("resolution"));
     near_ = p.getFloat("near");
@@ -44,42 +70,22 @@ class CubeTechnique final : public Technique {
     radialBias_ = p.getFloat("radial_bias");
     radialSlope_ = p.getFloat("radial_slope_bias");
     cullFaces_ = p.getInt("cull_faces") != 0;
+    const std::string& filter = p.getChoice("filter");
+    filter_ = filter == "hw2x2" ? 0 : filter == "box" ? 1 : 2;
+    kernel_ = std::stoi(p.getChoice("kernel"));
+    allLights_ = p.getChoice("lights") == "all";
+    slotCount_ = allLights_ ? uint32_t(p.getInt("max_lights")) : 1;
+    fromScreen_ = p.getChoice("resolution_from") == "screen";
+    minResolution_ = uint32_t(p.getInt("min_resolution"));
+    texelsPerPixel_ = p.getFloat("texels_per_pixel");
+    if (fromScreen_ && minResolution_ > resolution_)
+      throw std::invalid_argument("cube: min_resolution=" + std::to_string(minResolution_) + " is above resolution=" + std::to_string(resolution_));
+    slots_.assign(slotCount_, {});
 
-    TEXTURE2D_DESC td;
-    td.Width = td.Height = resolution_;
-    td.ArraySize = 6;
-    td.Format = radial_ ? FORMAT_R32_FLOAT : FORMAT_R32_TYPELESS;
-    td.BindFlags = (radial_ ? BIND_RENDER_TARGET : BIND_DEPTH_STENCIL) | BIND_SHADER_RESOURCE;
-    td.MiscFlags = RESOURCE_MISC_TEXTURECUBE;
-    cube_ = device.CreateTexture2D(td);
-    cube_->SetDebugName(radial_ ? "cube shadow map (radial distance)" : "cube shadow map");
     if (radial_) {
-      for (uint32_t f = 0; f < 6; ++f) {
-        RENDER_TARGET_VIEW_DESC rv;
-        rv.Format = FORMAT_R32_FLOAT;
-        rv.ViewDimension = RTV_DIMENSION_TEXTURE2DARRAY;
-        rv.Texture2DArray = {0, f, 1};
-        faceRtvs_.push_back(device.CreateRenderTargetView(cube_.get(), &rv));
-      }
-      TEXTURE2D_DESC dd;
-      dd.Width = dd.Height = resolution_;
-      dd.Format = FORMAT_D32_FLOAT;
-      dd.BindFlags = BIND_DEPTH_STENCIL;
-      radialDepth_ = device.CreateTexture2D(dd);
-      radialDepth_->SetDebugName("cube radial pass depth");
-      faces_.push_back(device.CreateDepthStencilView(radialDepth_.get()));
-      ShaderBytecode vs = CompileTechniqueShader("cube/radial.hlsl", "vs_5_0", "VSMain");
-      radialVs_ = device.CreateVertexShader(vs);
+      radialVs_ = device.CreateVertexShader(CompileTechniqueShader("cube/radial.hlsl", "vs_5_0", "VSMain"));
       radialPs_ = device.CreatePixelShader(CompileTechniqueShader("cube/radial.hlsl", "ps_5_0", "PSMain"));
-    } else {
-      faces_ = MakeSliceDepthViews(device, cube_.get());
     }
-    SHADER_RESOURCE_VIEW_DESC sd;
-    sd.Format = FORMAT_R32_FLOAT;
-    sd.ViewDimension = SRV_DIMENSION_TEXTURECUBE;
-    sd.TextureCube = {0, 1};
-    srv_ = device.CreateShaderResourceView(cube_.get(), &sd);
-
     RASTERIZER_DESC rd;
     // The faces' (s, t, major) bases are mirror images of a camera's, so winding flips between
     // faces' conventions; draw both sides (open meshes cast from either side anyway).
@@ -101,140 +107,250 @@ class CubeTechnique final : public Technique {
 
   void RenderShadows(DeviceContext& ctx, SceneDrawer& drawer, const FrameInputs& frame) override {
     GpuTimer::Scope timed(frame.timer, ctx, "shadow");
-    size_t points = frame.scene->pointLights.size();
+    const scene::Scene& s = *frame.scene;
+    size_t points = s.pointLights.size();
     if (light_ >= points || light_ >= frame.localLights.size() || frame.localLights[light_].type != LocalLight::Point)
-      throw std::invalid_argument("cube: light=" + std::to_string(light_) + " but scene '" + frame.scene->name + "' has " + std::to_string(points) +
-                                  " point light(s)");
-    const LocalLight& l = frame.localLights[light_];
-    if (!(near_ < l.range))
-      throw std::invalid_argument("cube: near=" + std::to_string(near_) + " is not below the range of point light " + std::to_string(light_) + " (" +
-                                  std::to_string(l.range) + ")");
-    Constants c{l.position, cube::DepthA(near_, l.range), cube::DepthB(near_, l.range), float(resolution_), light_, l.range, radialBias_, radialSlope_, {}};
-    ctx.UpdateSubresource(constants_.get(), 0, nullptr, &c, 0, 0);
+      throw std::invalid_argument("cube: light=" + std::to_string(light_) + " but scene '" + s.name + "' has " + std::to_string(points) + " point light(s)");
+    for (uint32_t i = 0; i < points; ++i)
+      if (!(near_ < frame.localLights[i].range) && (allLights_ || i == light_))
+        throw std::invalid_argument("cube: near=" + std::to_string(near_) + " is not below the range of point light " + std::to_string(i) + " (" +
+                                    std::to_string(frame.localLights[i].range) + ")");
+
+    const glm::mat4 camera = frame.cameraProj * frame.cameraView;
+    // Visible receivers: the instances whose boxes may meet the camera frustum.
+    visible_.clear();
+    for (uint32_t i = 0; i < s.instances.size(); ++i)
+      if (cube::BoxMayMeetFrustum(camera, s.instances[i].worldBounds)) visible_.push_back(i);
+
+    std::vector<uint32_t> chosen = ChooseLights(frame, camera);
+    Constants c{};
+    c.radialBias = radialBias_;
+    c.radialSlope = radialSlope_;
+    c.labSlot = kMaxCubeSlots;  // none, unless the judged light has a map this frame
+    for (auto& slot : c.slots) slot.light = ~0u;
 
     ShaderResourceView* none = nullptr;
     ctx.PSSetShaderResources(0, 1, &none);
-    VIEWPORT vp{0, 0, float(resolution_), float(resolution_), 0, 1};
-    ctx.RSSetViewports(1, &vp);
     ctx.RSSetState(rasterizer_.get());
     ctx.OMSetDepthStencilState(nullptr, 0);
     trianglesSubmitted_ = 0;
+    facesRendered_ = 0;
+    for (uint32_t k = 0; k < slotCount_; ++k) {
+      Slot& slot = slots_[k];
+      if (k >= chosen.size()) {
+        slot.light = ~0u;
+        continue;
+      }
+      const LocalLight& l = frame.localLights[chosen[k]];
+      EnsureSlotMaps(slot, ResolutionFor(l, frame));
+      slot.light = chosen[k];
+      c.slots[k] = {l.position, cube::DepthA(near_, l.range), cube::DepthB(near_, l.range), float(slot.resolution), chosen[k], l.range};
+      if (chosen[k] == light_) c.labSlot = k;
+      c.passLightPosition = l.position;
+      ctx.UpdateSubresource(constants_.get(), 0, nullptr, &c, 0, 0);
+      RenderSlot(ctx, drawer, frame, slot, l, camera);
+    }
+    ctx.UpdateSubresource(constants_.get(), 0, nullptr, &c, 0, 0);
+    labSlot_ = c.labSlot;
+  }
+
+  std::string LightingInclude() const override { return "cube/shadow.hlsli"; }
+  std::vector<hlsl::Define> LightingDefines() const override {
+    return {{"SP_CUBE_RADIAL", radial_ ? "1" : "0"},
+            {"SP_CUBE_SLOTS", std::to_string(slotCount_)},
+            {"SHADOW_FILTER", std::to_string(filter_)},
+            {"SHADOW_KERNEL", std::to_string(kernel_)}};
+  }
+
+  void BindLighting(DeviceContext& ctx) override {
+    ctx.PSSetConstantBuffers(2, {constants_.get()});
+    ShaderResourceView* srvs[kMaxCubeSlots] = {};
+    for (uint32_t k = 0; k < slotCount_; ++k) srvs[k] = slots_[k].light == ~0u ? nullptr : slots_[k].srv.get();
+    ctx.PSSetShaderResources(0, slotCount_, srvs);
+    ctx.PSSetSamplers(0, {sampler_.get()});
+  }
+
+  // Every cube held, and with storage=radial the depth buffers of their passes.
+  ShadowStats Stats() const override {
+    uint64_t bytes = 0;
+    for (const Slot& slot : slots_) bytes += uint64_t(slot.resolution) * slot.resolution * 4 * (radial_ ? 7 : 6);
+    return {bytes, trianglesSubmitted_, facesRendered_};
+  }
+  // The judged light's six faces.
+  std::vector<ShadowLayer> Layers() const override {
+    uint32_t r = labSlot_ < slotCount_ ? slots_[labSlot_].resolution : resolution_;
+    return std::vector<ShadowLayer>(6, {r, r});
+  }
+  int LabLocalLight(const scene::Scene&) const override { return int(light_); }  // point lights come first
+
+ private:
+  struct Slot {
+    uint32_t light = ~0u;  // local light index this frame, ~0u when unused
+    uint32_t resolution = 0;
+    Ref<Texture2D> cube, radialDepth;
+    std::vector<Ref<DepthStencilView>> faces;  // depth: one per face; radial: the passes' depth buffer
+    std::vector<Ref<RenderTargetView>> faceRtvs;
+    Ref<ShaderResourceView> srv;
+  };
+
+  // The lights shadowed this frame: lights=one, the chosen light; lights=all, the point lights
+  // whose range sphere meets a visible receiver's box and the camera frustum, largest on screen
+  // first, at most max_lights.
+  std::vector<uint32_t> ChooseLights(const FrameInputs& frame, const glm::mat4& camera) const {
+    if (!allLights_) return {light_};
+    const scene::Scene& s = *frame.scene;
+    std::vector<std::pair<float, uint32_t>> ranked;
+    for (uint32_t i = 0; i < s.pointLights.size(); ++i) {
+      const LocalLight& l = frame.localLights[i];
+      scene::Bounds sphere;
+      sphere.extend(l.position - glm::vec3(l.range));
+      sphere.extend(l.position + glm::vec3(l.range));
+      if (!cube::BoxMayMeetFrustum(camera, sphere)) continue;
+      bool lights = false;
+      for (uint32_t v : visible_) {
+        const scene::Bounds& b = s.instances[v].worldBounds;
+        glm::vec3 nearest = glm::clamp(l.position, b.min, b.max);
+        if (glm::dot(nearest - l.position, nearest - l.position) <= l.range * l.range) {
+          lights = true;
+          break;
+        }
+      }
+      if (lights) ranked.push_back({ScreenRadius(l, frame), i});
+    }
+    std::stable_sort(ranked.begin(), ranked.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+    std::vector<uint32_t> chosen;
+    for (size_t k = 0; k < ranked.size() && k < slotCount_; ++k) chosen.push_back(ranked[k].second);
+    return chosen;
+  }
+
+  // Radius in pixels of the light's range sphere on screen (the screen's half height when the
+  // camera is inside it).
+  static float ScreenRadius(const LocalLight& l, const FrameInputs& frame) {
+    float d = glm::length(l.position - frame.camera.position);
+    float halfHeight = 0.5f * float(frame.height);
+    if (d <= l.range * 1.0001f) return 1e9f;
+    float tanHalf = l.range / std::sqrt(d * d - l.range * l.range);
+    return std::min(1e9f, tanHalf * frame.cameraProj[1][1] * halfHeight);
+  }
+
+  // A face spans the sphere's diameter (2 ScreenRadius pixels) at its far end, so that many
+  // texels give one texel per pixel there, and more nearer the light.
+  uint32_t ResolutionFor(const LocalLight& l, const FrameInputs& frame) const {
+    if (!fromScreen_) return resolution_;
+    float wanted = 2.0f * ScreenRadius(l, frame) * texelsPerPixel_;
+    return std::clamp(NextPowerOfTwo(std::min(wanted, float(resolution_))), minResolution_, resolution_);
+  }
+
+  void EnsureSlotMaps(Slot& slot, uint32_t resolution) {
+    if (slot.cube && slot.resolution == resolution) return;
+    Device& device = *device_;
+    slot = {};
+    slot.resolution = resolution;
+    TEXTURE2D_DESC td;
+    td.Width = td.Height = resolution;
+    td.ArraySize = 6;
+    td.Format = radial_ ? FORMAT_R32_FLOAT : FORMAT_R32_TYPELESS;
+    td.BindFlags = (radial_ ? BIND_RENDER_TARGET : BIND_DEPTH_STENCIL) | BIND_SHADER_RESOURCE;
+    td.MiscFlags = RESOURCE_MISC_TEXTURECUBE;
+    slot.cube = device.CreateTexture2D(td);
+    slot.cube->SetDebugName(radial_ ? "cube shadow map (radial distance)" : "cube shadow map");
+    if (radial_) {
+      for (uint32_t f = 0; f < 6; ++f) {
+        RENDER_TARGET_VIEW_DESC rv;
+        rv.Format = FORMAT_R32_FLOAT;
+        rv.ViewDimension = RTV_DIMENSION_TEXTURE2DARRAY;
+        rv.Texture2DArray = {0, f, 1};
+        slot.faceRtvs.push_back(device.CreateRenderTargetView(slot.cube.get(), &rv));
+      }
+      TEXTURE2D_DESC dd;
+      dd.Width = dd.Height = resolution;
+      dd.Format = FORMAT_D32_FLOAT;
+      dd.BindFlags = BIND_DEPTH_STENCIL;
+      slot.radialDepth = device.CreateTexture2D(dd);
+      slot.radialDepth->SetDebugName("cube radial pass depth");
+      slot.faces.push_back(device.CreateDepthStencilView(slot.radialDepth.get()));
+    } else {
+      slot.faces = MakeSliceDepthViews(device, slot.cube.get());
+    }
+    SHADER_RESOURCE_VIEW_DESC sd;
+    sd.Format = FORMAT_R32_FLOAT;
+    sd.ViewDimension = SRV_DIMENSION_TEXTURECUBE;
+    sd.TextureCube = {0, 1};
+    slot.srv = device.CreateShaderResourceView(slot.cube.get(), &sd);
+  }
+
+  void RenderSlot(DeviceContext& ctx, SceneDrawer& drawer, const FrameInputs& frame, Slot& slot, const LocalLight& l, const glm::mat4& camera) {
     const std::vector<scene::Instance>& instances = frame.scene->instances;
-    const glm::mat4 camera = frame.cameraProj * frame.cameraView;
+    VIEWPORT vp{0, 0, float(slot.resolution), float(slot.resolution), 0, 1};
+    ctx.RSSetViewports(1, &vp);
+    // The lookup reads past a face's edge: the 2x2 filter one texel, a kernel its half width more.
+    const float widen = 1.0f + 2.0f * float(2 + (filter_ ? kernel_ / 2 : 0)) / float(slot.resolution);
     for (int f = 0; f < 6; ++f) {
       glm::mat4 viewProj = cube::FaceViewProj(f, l.position, near_, l.range);
       // A skipped face is still cleared (to lit), so no earlier frame's depths remain in it.
-      bool skip = cullFaces_ && !FaceMeetsCamera(f, l, camera);
-      auto keep = [&](uint32_t i) { return !skip && InFrustum(viewProj, instances[i].worldBounds); };
+      bool skip = cullFaces_ && !FaceNeeded(f, l, camera, widen, frame);
+      if (!skip) ++facesRendered_;
+      auto keep = [&](uint32_t i) { return !skip && cube::BoxMayMeetFrustum(viewProj, instances[i].worldBounds); };
       if (radial_) {
-        RenderTargetView* rtv = faceRtvs_[f].get();
-        ctx.OMSetRenderTargets(1, &rtv, faces_[0].get());
+        RenderTargetView* rtv = slot.faceRtvs[f].get();
+        ctx.OMSetRenderTargets(1, &rtv, slot.faces[0].get());
         const float far[4] = {3.0e38f, 0, 0, 0};  // nothing: lit at any distance
         ctx.ClearRenderTargetView(rtv, far);
-        ctx.ClearDepthStencilView(faces_[0].get(), CLEAR_DEPTH, 1.0f, 0);
+        ctx.ClearDepthStencilView(slot.faces[0].get(), CLEAR_DEPTH, 1.0f, 0);
         ctx.PSSetConstantBuffers(2, {constants_.get()});
         trianglesSubmitted_ += drawer.DrawDepth(ctx, viewProj, keep, {radialVs_.get(), radialPs_.get()});
       } else {
-        ctx.OMSetRenderTargets(0, nullptr, faces_[f].get());
-        ctx.ClearDepthStencilView(faces_[f].get(), CLEAR_DEPTH, 1.0f, 0);
+        ctx.OMSetRenderTargets(0, nullptr, slot.faces[f].get());
+        ctx.ClearDepthStencilView(slot.faces[f].get(), CLEAR_DEPTH, 1.0f, 0);
         trianglesSubmitted_ += drawer.DrawDepth(ctx, viewProj, keep);
       }
     }
   }
 
-  std::string LightingInclude() const override { return "cube/shadow.hlsli"; }
-  std::vector<hlsl::Define> LightingDefines() const override { return {{"SP_CUBE_RADIAL", radial_ ? "1" : "0"}}; }
-
-  void BindLighting(DeviceContext& ctx) override {
-    ctx.PSSetConstantBuffers(2, {constants_.get()});
-    ctx.PSSetShaderResources(0, {srv_.get()});
-    ctx.PSSetSamplers(0, {sampler_.get()});
-  }
-
-  // The cube, and with storage=radial the depth buffer of its passes.
-  ShadowStats Stats() const override { return {uint64_t(resolution_) * resolution_ * 4 * (radial_ ? 7 : 6), trianglesSubmitted_}; }
-  std::vector<ShadowLayer> Layers() const override { return std::vector<ShadowLayer>(6, {resolution_, resolution_}); }
-  int LabLocalLight(const scene::Scene&) const override { return int(light_); }  // point lights come first
-
- private:
-  // A world box is outside a face's frustum when its 8 corners are all outside one clip plane
-  // (each plane is linear in the world point, so this is exact for the box).
-  static bool InFrustum(const glm::mat4& viewProj, const scene::Bounds& b) {
-    glm::vec3 corners[8];
-    b.corners(corners);
-    glm::vec4 c[8];
-    for (int i = 0; i < 8; ++i) c[i] = viewProj * glm::vec4(corners[i], 1.0f);
-    auto allOutside = [&](auto outside) {
-      for (const glm::vec4& p : c)
-        if (!outside(p)) return false;
-      return true;
-    };
-    return !(allOutside([](const glm::vec4& p) { return p.x > p.w; }) || allOutside([](const glm::vec4& p) { return p.x < -p.w; }) ||
-             allOutside([](const glm::vec4& p) { return p.y > p.w; }) || allOutside([](const glm::vec4& p) { return p.y < -p.w; }) ||
-             allOutside([](const glm::vec4& p) { return p.z < 0; }) || allOutside([](const glm::vec4& p) { return p.z > p.w; }));
-  }
-
-  // Whether face f's frustum, widened by two texels each side (the seamless 2x2 filter reads one
-  // texel past an edge), may meet the camera's: false when the camera frustum's 8 corners lie
-  // outside one plane of the face frustum, or the face pyramid's 5 corners (light, far corners)
-  // outside one plane of the camera's (a conservative separating-plane test).
-  bool FaceMeetsCamera(int f, const LocalLight& l, const glm::mat4& camera) const {
-    const float widen = 1.0f + 4.0f / float(resolution_);
+  // A face is needed when its (widened) frustum may meet the camera's and a visible receiver.
+  bool FaceNeeded(int f, const LocalLight& l, const glm::mat4& camera, float widen, const FrameInputs& frame) const {
+    if (!cube::FaceMayMeetCamera(f, l.position, near_, l.range, widen, camera)) return false;
     glm::mat4 face = cube::FaceViewProj(f, l.position, near_, l.range);
-    glm::mat4 inv = glm::inverse(camera);
-    glm::vec4 cam[8];
-    for (int i = 0; i < 8; ++i) {
-      glm::vec4 p = inv * glm::vec4(i & 1 ? 1.0f : -1.0f, i & 2 ? 1.0f : -1.0f, i & 4 ? 1.0f : 0.0f, 1.0f);
-      cam[i] = face * (p / p.w);
-    }
-    auto allOutside = [](const glm::vec4* c, int n, auto outside) {
-      for (int i = 0; i < n; ++i)
-        if (!outside(c[i])) return false;
-      return true;
-    };
-    if (allOutside(cam, 8, [&](const glm::vec4& p) { return p.x > widen * p.w; }) || allOutside(cam, 8, [&](const glm::vec4& p) { return p.x < -widen * p.w; }) ||
-        allOutside(cam, 8, [&](const glm::vec4& p) { return p.y > widen * p.w; }) || allOutside(cam, 8, [&](const glm::vec4& p) { return p.y < -widen * p.w; }) ||
-        allOutside(cam, 8, [](const glm::vec4& p) { return p.w < 0; }) || allOutside(cam, 8, [](const glm::vec4& p) { return p.z > p.w; }))
-      return false;
-    cube::FaceAxes ax = cube::Face(f);
-    glm::vec4 pyr[5] = {camera * glm::vec4(l.position, 1.0f)};
-    for (int i = 0; i < 4; ++i) {
-      glm::vec3 d = ax.major + widen * ((i & 1 ? 1.0f : -1.0f) * ax.s + (i & 2 ? 1.0f : -1.0f) * ax.t);
-      pyr[i + 1] = camera * glm::vec4(l.position + l.range * d, 1.0f);
-    }
-    return !(allOutside(pyr, 5, [](const glm::vec4& p) { return p.x > p.w; }) || allOutside(pyr, 5, [](const glm::vec4& p) { return p.x < -p.w; }) ||
-             allOutside(pyr, 5, [](const glm::vec4& p) { return p.y > p.w; }) || allOutside(pyr, 5, [](const glm::vec4& p) { return p.y < -p.w; }) ||
-             allOutside(pyr, 5, [](const glm::vec4& p) { return p.z < 0; }) || allOutside(pyr, 5, [](const glm::vec4& p) { return p.z > p.w; }));
+    for (uint32_t v : visible_)
+      if (cube::BoxMayMeetFrustum(face, frame.scene->instances[v].worldBounds, widen)) return true;
+    return false;
   }
 
-  // cbuffer CubeShadow in shaders-hlsl/cube/shadow.hlsli.
-  struct Constants {
+  // cbuffer CubeShadow in shaders-hlsl/cube/constants.hlsli.
+  struct SlotConstants {
     glm::vec3 lightPosition;
     float depthA;
     float depthB;
     float faceSize;
-    uint32_t lightIndex;
+    uint32_t light;  // local light index, ~0u for an unused slot
     float range;
-    float radialBias, radialSlope;
-    float pad[2];
   };
-  static_assert(sizeof(Constants) == 48);
+  struct Constants {
+    glm::vec3 passLightPosition;  // the light whose faces are being rendered (storage=radial)
+    float radialBias;
+    float radialSlope;
+    uint32_t labSlot;
+    float pad[2];
+    SlotConstants slots[kMaxCubeSlots];
+  };
+  static_assert(sizeof(SlotConstants) == 32 && sizeof(Constants) == 32 + 32 * kMaxCubeSlots);
 
-  uint32_t light_ = 0, resolution_ = 0;
-  float near_ = 0.05f;
-  bool radial_ = false;
+  Device* device_ = nullptr;
+  uint32_t light_ = 0, resolution_ = 0, minResolution_ = 64;
+  float near_ = 0.05f, texelsPerPixel_ = 1.0f;
+  bool radial_ = false, allLights_ = false, fromScreen_ = false, cullFaces_ = true;
+  int filter_ = 0, kernel_ = 3;
   float radialBias_ = 0, radialSlope_ = 0;
-  Ref<Texture2D> cube_, radialDepth_;
-  std::vector<Ref<DepthStencilView>> faces_;  // depth: one per face; radial: the passes' depth buffer
-  std::vector<Ref<RenderTargetView>> faceRtvs_;
+  uint32_t slotCount_ = 1, labSlot_ = kMaxCubeSlots;
+  std::vector<Slot> slots_;
+  std::vector<uint32_t> visible_;
   Ref<VertexShader> radialVs_;
   Ref<PixelShader> radialPs_;
-  Ref<ShaderResourceView> srv_;
   Ref<RasterizerState> rasterizer_;
   Ref<SamplerState> sampler_;
   Ref<Buffer> constants_;
-  bool cullFaces_ = true;
   uint64_t trianglesSubmitted_ = 0;
+  uint32_t facesRendered_ = 0;
 };
 
 }  // namespace

@@ -29,7 +29,8 @@ struct CubeRoom {
   size_t edgeSphere = 0;  // the sphere on the +X/-Y face edge
 };
 
-inline CubeRoom MakeCubeRoom() {
+// withSpheres=false: the bare room (nothing casts a shadow).
+inline CubeRoom MakeCubeRoom(bool withSpheres = true) {
   CubeRoom r;
   scene::Scene& s = r.scene;
   s.name = "cube-room";
@@ -51,9 +52,11 @@ inline CubeRoom MakeCubeRoom() {
   r.light = {0.4f, 2.6f, -0.3f};
   const glm::vec3 offsets[] = {{1.6f, 0.35f, -0.25f}, {-1.5f, -0.3f, 0.4f}, {0.3f, 1.4f, 0.2f},
                                {-0.35f, -1.5f, 0.3f}, {0.25f, -0.3f, 1.5f}, {-0.3f, 0.25f, -1.6f}};
-  for (const glm::vec3& o : offsets) r.spheres.push_back({r.light + o, 0.35f});
-  r.edgeSphere = r.spheres.size();
-  r.spheres.push_back({r.light + glm::normalize(glm::vec3(1.0f, -1.0f, 0.3f)) * 1.8f, 0.3f});
+  if (withSpheres) {
+    for (const glm::vec3& o : offsets) r.spheres.push_back({r.light + o, 0.35f});
+    r.edgeSphere = r.spheres.size();
+    r.spheres.push_back({r.light + glm::normalize(glm::vec3(1.0f, -1.0f, 0.3f)) * 1.8f, 0.3f});
+  }
   uint32_t sphere = s.addMesh(scene::MakeSphere(CubeRoom::kSegments, CubeRoom::kRings));
   for (const CubeRoom::Sphere& sp : r.spheres)
     s.addInstance(sphere, glm::scale(glm::translate(glm::mat4(1.0f), sp.center), glm::vec3(2 * sp.radius)), glm::vec3(0.5f));
@@ -158,6 +161,17 @@ inline double RoomLocalLight(const scene::Scene& s, glm::vec3 p, glm::vec3 n) {
   return color * std::clamp(1 - q * q * q * q, 0.0, 1.0) / (d * d) * std::max(0.0, glm::dot(glm::dvec3(n), v) / d) * cone;
 }
 
+// Whether a room-surface point lies within `reachTexels` face texels (at `resolution`) of a second
+// wall: a kernel that wide reaches the other wall there, which stands in front of the receiver's
+// plane, and darkens the concave corner as any filter of that width does.
+inline bool WithinKernelOfACorner(const CubeRoom& room, const RoomPixel& e, float reachTexels, float resolution) {
+  glm::vec3 d = glm::abs(e.surface - room.light);
+  float footprint = 2.0f * reachTexels * 2.0f * std::max({d.x, d.y, d.z}) / resolution;
+  for (int k = 0; k < 3; ++k)
+    if (e.normal[k] == 0.0f && std::min(e.surface[k] - room.lo[k], room.hi[k] - e.surface[k]) < footprint) return true;
+  return false;
+}
+
 // Pixels checked, wrong and in shadow, and shadow pixels per cube face (of the direction from the
 // light) in all, and of the edge sphere's shadow.
 struct RoomCheck {
@@ -170,20 +184,23 @@ struct RoomCheck {
 };
 
 // Compares a rendered RGBA8 image of the room with the analytic shadows: every room-surface pixel
-// at least one pixel away from a change of the expected answer (texel grid, 2x2 PCF) and lit
+// at least `band` pixels away from a change of the expected answer (texel grid, 2x2 PCF; a wider
+// kernel's penumbra needs more), not within `cornerReachTexels` of a second wall (at face size
+// `resolution`; WithinKernelOfACorner) and lit
 // enough to tell lit from shadowed (16 sRGB levels) must be classified as the CPU says. Reports
 // the first failures and writes the image under TestOutputDir() when any pixel is wrong.
-inline RoomCheck CheckRoomImage(const CubeRoom& room, const scene::Camera& cam, const std::vector<uint8_t>& img, uint32_t W, uint32_t H) {
+inline RoomCheck CheckRoomImage(const CubeRoom& room, const scene::Camera& cam, const std::vector<uint8_t>& img, uint32_t W, uint32_t H, int band = 1,
+                                float cornerReachTexels = 0.0f, float resolution = 512.0f) {
   RoomCheck c;
   std::vector<RoomPixel> expected = AnalyticRoom(room, cam, W, H);
-  for (uint32_t y = 1; y + 1 < H; ++y)
-    for (uint32_t x = 1; x + 1 < W; ++x) {
+  for (uint32_t y = band; y + band < H; ++y)
+    for (uint32_t x = band; x + band < W; ++x) {
       const RoomPixel& e = expected[y * W + x];
       if (e.code != 0 && e.code != 1) continue;
       bool nearEdge = false;
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) nearEdge |= expected[(y + dy) * W + (x + dx)].code != e.code;
-      if (nearEdge) continue;
+      for (int dy = -band; dy <= band; ++dy)
+        for (int dx = -band; dx <= band; ++dx) nearEdge |= expected[(y + dy) * W + (x + dx)].code != e.code;
+      if (nearEdge || (cornerReachTexels > 0 && WithinKernelOfACorner(room, e, cornerReachTexels, resolution))) continue;
       int lit = EncodeSrgb8(0.8 * (room.scene.light.ambient + RoomLocalLight(room.scene, e.surface, e.normal)));
       int dark = EncodeSrgb8(0.8 * room.scene.light.ambient);
       if (lit - dark < 16) continue;

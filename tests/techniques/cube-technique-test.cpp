@@ -64,13 +64,16 @@ TEST_P(CubeTechniqueTest, RadialDistanceStorageCastsTheSameExactShadows) {
 }
 
 void CheckRoomShadows(CubeTechniqueTest& t, const std::map<std::string, std::string>& params) {
+  // A kernel's taps reach its half width plus the bilinear texel; its penumbra on the room's walls
+  // stays within the one-pixel band at 512 texels per face up to 5x5.
+  float reach = params.count("filter") && params.at("filter") != "hw2x2" ? float(std::stoi(params.at("kernel")) / 2 + 1) : 0.0f;
   const uint32_t W = 160, H = 120;
   CubeRoom room = MakeCubeRoom();
   std::unique_ptr<tech::Renderer> r = t.MakeRenderer(room.scene, W, H, params);
   RoomCheck total;
   for (const scene::Camera& cam : RoomCameras(room)) {
     r->RenderFrame(cam, room.scene.light);
-    total.add(CheckRoomImage(room, cam, r->ReadColor(), W, H));
+    total.add(CheckRoomImage(room, cam, r->ReadColor(), W, H, 1, reach, std::stof(params.at("resolution"))));
   }
   EXPECT_EQ(total.wrong, 0) << "of " << total.checked << " pixels checked";
   EXPECT_GT(total.checked, 20000);
@@ -79,6 +82,135 @@ void CheckRoomShadows(CubeTechniqueTest& t, const std::map<std::string, std::str
   // The edge sphere's shadow is checked on both sides of the +X/-Y edge.
   EXPECT_GT(total.edgeShadowPerFace[0], 20);
   EXPECT_GT(total.edgeShadowPerFace[3], 20);
+}
+
+// Kernels wider than 2x2 step across face edges onto the neighbouring face: the exact shadows
+// still hold (the edge sphere's on both sides of its edge), on both storages.
+TEST_P(CubeTechniqueTest, WideKernelsKeepExactShadowsAcrossFaceEdges) {
+  CheckRoomShadows(*this, {{"resolution", "512"}, {"filter", "box"}, {"kernel", "5"}});
+  CheckRoomShadows(*this, {{"resolution", "512"}, {"filter", "gauss"}, {"kernel", "5"}});
+  CheckRoomShadows(*this, {{"resolution", "512"}, {"filter", "box"}, {"kernel", "5"}, {"storage", "radial"}});
+}
+
+// Pixels of the bare room (no occluder) more than `tolerance` sRGB levels darker than the CPU's
+// unshadowed lighting, over the three room cameras; `kernel` taps one texel apart at `resolution`.
+// Points within the kernel's reach of a second wall are not counted (WithinKernelOfACorner).
+int DarkenedPixelsOfTheBareRoom(CubeTechniqueTest& t, const std::map<std::string, std::string>& params, int tolerance) {
+  const uint32_t W = 160, H = 120;
+  const float resolution = std::stof(params.at("resolution")), reach = std::stoi(params.at("kernel")) / 2 + 1;
+  CubeRoom room = MakeCubeRoom(false);
+  std::unique_ptr<tech::Renderer> r = t.MakeRenderer(room.scene, W, H, params);
+  int darkened = 0, checked = 0;
+  for (const scene::Camera& cam : RoomCameras(room)) {
+    r->RenderFrame(cam, room.scene.light);
+    std::vector<uint8_t> img = r->ReadColor();
+    std::vector<RoomPixel> expected = AnalyticRoom(room, cam, W, H);
+    for (uint32_t i = 0; i < W * H; ++i) {
+      const RoomPixel& e = expected[i];
+      if (e.code != 0) continue;
+      if (WithinKernelOfACorner(room, e, reach, resolution)) continue;
+      int lit = EncodeSrgb8(0.8 * (room.scene.light.ambient + RoomLocalLight(room.scene, e.surface, e.normal)));
+      ++checked;
+      if (img[i * 4 + 1] < lit - tolerance && ++darkened <= 3)
+        ADD_FAILURE() << "pixel " << i % W << "," << i / W << " at (" << e.surface.x << "," << e.surface.y << "," << e.surface.z << ") of the camera at " << cam.position.x << ": " << int(img[i * 4 + 1]) << " where the unshadowed light gives " << lit;
+    }
+  }
+  EXPECT_GT(checked, 30000);
+  return darkened;
+}
+
+// A wide kernel at a coarse resolution, in a room where nothing casts: no pixel may darken, on the
+// walls the light grazes (the taps' receiver plane) or along the lines where the cube's face edges
+// fall on the walls (taps on the neighbouring face). Comparing every tap with the receiver's own
+// depth instead darkened 17,971 / 4,521 pixels (box / gauss, depth storage) and 56,590 / 10,657
+// (radial); the receiver plane without its one-texel footprint left 80 (gauss, depth) along the
+// face edges, where a tap's 2x2 texels straddle two faces.
+TEST_P(CubeTechniqueTest, WideKernelsLeaveNoSeamAlongFaceEdges) {
+  for (const char* filter : {"box", "gauss"})
+    for (const char* storage : {"depth", "radial"})
+      EXPECT_EQ(DarkenedPixelsOfTheBareRoom(*this, {{"resolution", "128"}, {"filter", filter}, {"kernel", "9"}, {"storage", storage}}, 3), 0)
+          << filter << " 9x9, storage=" << storage;
+}
+
+// lights=all shadows every light that lights what the camera sees: the room's light split into
+// two half-intensity lights at the same place must cast the one light's exact shadows (with one of
+// the two shadowed, the shadows would be half lit), and a third light far outside the room, whose
+// range meets nothing the camera sees, gets no cube (no more faces drawn than without it).
+TEST_P(CubeTechniqueTest, AllLightsShadowsTheLightsThatLightWhatTheCameraSees) {
+  const uint32_t W = 160, H = 120;
+  CubeRoom room = MakeCubeRoom();
+  scene::Scene split = room.scene;
+  split.pointLights[0].color *= 0.5f;
+  split.pointLights.push_back(split.pointLights[0]);
+  scene::Scene withFar = split;
+  withFar.pointLights.push_back({{200.0f, 3.0f, 0.0f}, {5.0f, 5.0f, 5.0f}, 10.0f});
+  uint32_t faces[2] = {};
+  int wrongWithOne = 0;
+  for (const scene::Camera& cam : RoomCameras(room)) {
+    const scene::Scene* scenes[2] = {&split, &withFar};
+    for (int k = 0; k < 2; ++k) {
+      std::unique_ptr<tech::Renderer> r = MakeRenderer(*scenes[k], W, H, {{"resolution", "512"}, {"lights", "all"}});
+      r->RenderFrame(cam, room.scene.light);
+      RoomCheck c = CheckRoomImage(room, cam, r->ReadColor(), W, H);
+      EXPECT_EQ(c.wrong, 0) << "of " << c.checked;
+      faces[k] += r->technique().Stats().layersRendered;
+    }
+    ::testing::ScopedTrace trace(__FILE__, __LINE__, "lights=one, expected to fail");
+    std::unique_ptr<tech::Renderer> one = MakeRenderer(split, W, H, {{"resolution", "512"}});
+    one->RenderFrame(cam, room.scene.light);
+    std::vector<uint8_t> img = one->ReadColor();
+    std::vector<RoomPixel> e = AnalyticRoom(room, cam, W, H);
+    for (uint32_t i = 0; i < W * H; ++i)
+      if (e[i].code == 1) wrongWithOne += img[i * 4 + 1] > EncodeSrgb8(0.8 * room.scene.light.ambient) + 8;
+  }
+  EXPECT_GT(faces[0], 6u) << "both lights' cubes are drawn";
+  EXPECT_EQ(faces[1], faces[0]) << "the far light must get no faces";
+  EXPECT_GT(wrongWithOne, 1000) << "with lights=one the other half light must light the shadows";
+}
+
+// resolution_from=screen: inside a light's range the face resolution is the largest; from far
+// away, where the range sphere covers a few pixels, the smallest. The exact shadows hold with it.
+TEST_P(CubeTechniqueTest, ScreenSizedResolutionFollowsTheLightsSizeOnScreen) {
+  CubeRoom room = MakeCubeRoom();
+  std::map<std::string, std::string> params = {{"resolution", "512"}, {"resolution_from", "screen"}, {"min_resolution", "64"}};
+  CheckRoomShadows(*this, params);
+  std::unique_ptr<tech::Renderer> r = MakeRenderer(room.scene, 160, 120, params);
+  r->RenderFrame(room.scene.camera, room.scene.light);
+  EXPECT_EQ(r->technique().Stats().memoryBytes, 6u * 512 * 512 * 4);
+  scene::Camera far = room.scene.camera;
+  far.position = {0.0f, 3.0f, 200.0f};
+  far.target = {0.0f, 3.0f, 0.0f};
+  far.farZ = 400.0f;
+  r->RenderFrame(far, room.scene.light);
+  EXPECT_EQ(r->technique().Stats().memoryBytes, 6u * 64 * 64 * 4);  // 16 / 200 of a 90-degree view of 120 pixels: 10 texels wanted
+}
+
+// King: skip the faces whose frustum meets no visible receiver. A floor under a light seen from
+// above: the camera frustum reaches above the light, but nothing there receives a shadow, so the
+// +Y face is skipped (5 faces), and the picture is the one with all 6.
+TEST_P(CubeTechniqueTest, FacesWithoutVisibleReceiversAreSkipped) {
+  scene::Scene s;
+  s.name = "floor-under-a-light";
+  s.addInstance(s.addMesh(scene::MakePlane(2)), glm::scale(glm::mat4(1.0f), glm::vec3(10.0f, 1.0f, 10.0f)), glm::vec3(0.8f));
+  s.addInstance(s.addMesh(scene::MakeSphere(24, 12)), glm::translate(glm::mat4(1.0f), glm::vec3(1.0f, 1.0f, 0.0f)), glm::vec3(0.5f));
+  s.light.color = glm::vec3(0.0f);
+  s.light.ambient = 0.05f;
+  s.pointLights.push_back({{0.0f, 2.0f, 0.0f}, {5.0f, 5.0f, 5.0f}, 16.0f});
+  s.camera.position = {0.0f, 12.0f, 8.0f};
+  s.camera.target = {0.0f, 0.0f, 0.0f};
+  s.finalize();
+  const uint32_t W = 96, H = 72;
+  std::vector<uint8_t> img[2];
+  uint32_t faces[2] = {};
+  for (int cull = 0; cull < 2; ++cull) {
+    std::unique_ptr<tech::Renderer> r = MakeRenderer(s, W, H, {{"resolution", "256"}, {"cull_faces", std::to_string(cull)}});
+    r->RenderFrame(s.camera, s.light);
+    img[cull] = r->ReadColor();
+    faces[cull] = r->technique().Stats().layersRendered;
+  }
+  EXPECT_EQ(faces[0], 6u);
+  EXPECT_EQ(faces[1], 5u) << "only the +Y face (nothing above the light) may be skipped";
+  EXPECT_EQ(CompareImages("cull-receivers", W, H, img[0].data(), img[1].data(), 0), 0u);
 }
 
 // Face culling: a camera looking down at one corner of the floor sees only part of the cube; the

@@ -168,6 +168,7 @@ struct ShadowLayer {
 struct ShadowStats {
   uint64_t memoryBytes = 0;        // shadow resources
   uint64_t trianglesSubmitted = 0; // in shadow passes, last frame
+  uint32_t layersRendered = 0;     // shadow-map layers drawn last frame (cube faces); 0 when not counted
 };
 
 class Technique {
