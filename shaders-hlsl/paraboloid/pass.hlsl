@@ -13,9 +13,9 @@
 // its interpolated z stays below the threshold. SV_ClipDistance would do it before rasterizing,
 // but needs GL_CLIP_DISTANCEi and Vulkan's shaderClipDistance, which the RHI does not expose.
 //
-// SP_PARABOLOID_EXACT=1 (depth=exact): the pixel shader writes SV_Depth from the interpolated
-// light-relative position instead (a point on the triangle's plane, so its distance is a true
-// surface distance), separating the depth interpolation error from the silhouette error. The
+// SP_PARABOLOID_EXACT=1 (depth=exact): the pixel shader writes SV_Depth, the distance along the
+// texel centre's own direction to the triangle's plane, so only the silhouette error (which
+// texels a triangle covers) remains, separated from the depth interpolation error. The
 // rasterizer bias does not reach a written depth, so the shader adds its own: parabExactBias in world
 // units plus slope_bias times the depth's larger screen derivative, as D3D11's slope term.
 //! vs_5_0 VSMain
@@ -47,7 +47,18 @@ VSOut VSMain(float3 pos : POSITION) {
 
 #if SP_PARABOLOID_EXACT
 float PSMain(VSOut i) : SV_Depth {
-  float z = ParaboloidDepth(length(i.rel));
+  // The interpolated position lies on the triangle's plane, but not on the ray of this pixel: the
+  // interpolation is linear in paraboloid space. Its screen derivatives are constant across the
+  // triangle and span the plane, so the plane is known exactly; intersect it with the direction
+  // this texel's centre stands for (the inverse mapping) for the true distance. Where the ray
+  // grazes the plane or misses it, the interpolated point's distance stands in.
+  float3 plane = cross(ddx(i.rel), ddy(i.rel));
+  float2 ndc = float2(i.pos.x, parabMapSize - i.pos.y) * (2.0 / parabMapSize) - 1.0;
+  float q = dot(ndc, ndc);
+  float3 ray = float3(2.0 * ndc, 1.0 - q) / (1.0 + q);
+  float along = dot(plane, ray);
+  float t = abs(along) > 1e-4 * length(plane) ? dot(plane, i.rel) / along : -1.0;
+  float z = ParaboloidDepth(t > 0.0 ? t : length(i.rel));
   // D3D11's slope term, on the written depth (derivatives before the clip).
   float slope = max(abs(ddx(z)), abs(ddy(z)));
   clip(i.frameZ - parabDiscardZ);

@@ -13,6 +13,7 @@
 #include <stdexcept>
 
 #include "cube/cube-faces.h"
+#include "local-lights.h"
 #include <sp/tech/technique.h>
 
 namespace sp::tech {
@@ -101,14 +102,7 @@ class CubeTechnique final : public Technique {
 
   void RenderShadows(DeviceContext& ctx, SceneDrawer& drawer, const FrameInputs& frame) override {
     GpuTimer::Scope timed(frame.timer, ctx, "shadow");
-    size_t points = frame.scene->pointLights.size();
-    if (light_ >= points || light_ >= frame.localLights.size() || frame.localLights[light_].type != LocalLight::Point)
-      throw std::invalid_argument("cube: light=" + std::to_string(light_) + " but scene '" + frame.scene->name + "' has " + std::to_string(points) +
-                                  " point light(s)");
-    const LocalLight& l = frame.localLights[light_];
-    if (!(near_ < l.range))
-      throw std::invalid_argument("cube: near=" + std::to_string(near_) + " is not below the range of point light " + std::to_string(light_) + " (" +
-                                  std::to_string(l.range) + ")");
+    const LocalLight& l = ShadowedPointLight("cube", light_, near_, frame);
     Constants c{l.position, cube::DepthA(near_, l.range), cube::DepthB(near_, l.range), float(resolution_), light_, l.range, radialBias_, radialSlope_, {}};
     ctx.UpdateSubresource(constants_.get(), 0, nullptr, &c, 0, 0);
 

@@ -8,6 +8,7 @@
 // rasterizer depth bias as in cube. The directional light is unshadowed.
 #include <stdexcept>
 
+#include "local-lights.h"
 #include "paraboloid/paraboloid-map.h"
 #include <sp/tech/technique.h>
 
@@ -30,7 +31,7 @@ class ParaboloidTechnique final : public Technique {
         {ParamSpec::Choice, "axis", "world axis of the front hemisphere (+axis) and normal of the seam plane through the light", "y", 0, 0, {"x", "y", "z"}},
         {ParamSpec::Int, "depth_bias", "D3D11 DepthBias (units of the depth format)", "200", -1e7, 1e7, {}},
         {ParamSpec::Float, "slope_bias", "D3D11 SlopeScaledDepthBias (depth=exact: the shader applies it to the depth it writes)", "2.0", -100, 100, {}},
-        {ParamSpec::Choice, "depth", "vertex: depth interpolated from the vertices (the classic method); exact: the pixel shader writes the interpolated point's distance", "vertex", 0, 0, {"vertex", "exact"}},
+        {ParamSpec::Choice, "depth", "vertex: depth interpolated from the vertices (the classic method); exact: the pixel shader writes the distance to the triangle's plane along the texel's direction", "vertex", 0, 0, {"vertex", "exact"}},
         {ParamSpec::Float, "exact_bias", "depth=exact: world units added to the distance written (no rasterizer bias reaches a written depth)", "0.01", 0, 1e3, {}},
     };
   }
@@ -74,14 +75,7 @@ class ParaboloidTechnique final : public Technique {
 
   void RenderShadows(DeviceContext& ctx, SceneDrawer& drawer, const FrameInputs& frame) override {
     GpuTimer::Scope timed(frame.timer, ctx, "shadow");
-    size_t points = frame.scene->pointLights.size();
-    if (light_ >= points || light_ >= frame.localLights.size() || frame.localLights[light_].type != LocalLight::Point)
-      throw std::invalid_argument("paraboloid: light=" + std::to_string(light_) + " but scene '" + frame.scene->name + "' has " + std::to_string(points) +
-                                  " point light(s)");
-    const LocalLight& l = frame.localLights[light_];
-    if (!(near_ < l.range))
-      throw std::invalid_argument("paraboloid: near=" + std::to_string(near_) + " is not below the range of point light " + std::to_string(light_) + " (" +
-                                  std::to_string(l.range) + ")");
+    const LocalLight& l = ShadowedPointLight("paraboloid", light_, near_, frame);
     const float discardZ = paraboloid::DiscardZ(resolution_, kRimTexels);
     Constants c{};
     glm::mat4 front = paraboloid::HemisphereView(axis_, 0, l.position);
