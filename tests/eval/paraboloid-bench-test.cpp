@@ -7,11 +7,9 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
-#include <filesystem>
 #include <string>
 
-#include "bench.h"
-#include <sp/rhi/rhi.h>
+#include "bench-both-backends.h"
 
 namespace sp::test {
 namespace {
@@ -21,30 +19,10 @@ struct Measured {
 };
 
 Measured Bench(const scene::Scene& s, const std::string& technique, const std::map<std::string, std::string>& params) {
-  eval::ReferenceCache cache(s, std::filesystem::path(SHADOWPORT_TEST_OUTPUT_DIR) / "reference-cache");
-  bench::RunResult r[2];
-  const Backend backends[2] = {Backend::Vulkan, Backend::OpenGL};
-  for (int i = 0; i < 2; ++i) {
-    bench::RunSpec spec;
-    spec.scene = &s;
-    spec.technique = technique;
-    spec.params = params;
-    spec.backend = backends[i];
-    spec.width = 160;
-    spec.height = 90;
-    spec.frames = 1;
-    spec.validate = true;
-    r[i] = bench::RunOne(spec, cache);
-    EXPECT_EQ(r[i].validationErrors, 0u) << BackendName(backends[i]) << ": " << r[i].lastValidationError;
-  }
+  std::array<bench::RunResult, 2> r = BenchOnBothBackends(s, technique, params, 160, 90);
   EXPECT_EQ(r[0].judgedLocalLight, 0);
   EXPECT_GT(r[0].accuracy.receiving, 160u * 90u / 2) << s.name << ": the room's surfaces face the point light";
-  bool mesa = r[0].device.find("llvmpipe") != std::string::npos && r[1].device.find("llvmpipe") != std::string::npos;
-  if (mesa) {
-    EXPECT_EQ(r[0].accuracy.falseLit, r[1].accuracy.falseLit) << s.name << " " << technique;
-    EXPECT_EQ(r[0].accuracy.falseShadow, r[1].accuracy.falseShadow) << s.name << " " << technique;
-    EXPECT_EQ(r[0].accuracy.absErrorSum, r[1].accuracy.absErrorSum) << s.name << " " << technique;
-  }
+  ExpectSameAccuracyOnMesa(r, s.name + " " + technique);
   const eval::Accuracy& a = r[0].accuracy;
   std::printf("%s %s: misclassified %.3f %% (false lit %.3f, false shadow %.3f) of %llu pixels\n", s.name.c_str(), technique.c_str(), a.misclassifiedPct(),
               a.falseLitPct(), a.falseShadowPct(), (unsigned long long)a.receiving);
