@@ -76,6 +76,8 @@ const Entry kScenes[] = {
     {"distant-occluder", proc::MakeDistantOccluder},
     {"point-light-room", proc::MakePointLightRoom},
     {"cube-seam", proc::MakeCubeSeam},
+    {"paraboloid-coarse", proc::MakeParaboloidCoarse},
+    {"paraboloid-fine", proc::MakeParaboloidFine},
 };
 
 }  // namespace

@@ -1,6 +1,7 @@
 // The scene's local lights as the lit pass shades them (technique.h, LocalLight) and the cbuffer
 // that carries them (shaders-hlsl/common/local-lights.hlsli).
 #include <cmath>
+#include <stdexcept>
 
 #include "local-lights.h"
 
@@ -45,6 +46,18 @@ void CheckLocalLights(const scene::Scene& scene) {
       throw std::invalid_argument("scene '" + scene.name + "': local light " + std::to_string(i) + " (" + (l.type == LocalLight::Spot ? "spot" : "point") +
                                   ") needs a finite position, a colour >= 0, range > 0 and, for spots, 0 <= inner < outer <= pi/2");
   }
+}
+
+const LocalLight& ShadowedPointLight(const std::string& technique, uint32_t light, float nearZ, const FrameInputs& frame) {
+  size_t points = frame.scene->pointLights.size();
+  if (light >= points || light >= frame.localLights.size() || frame.localLights[light].type != LocalLight::Point)
+    throw std::invalid_argument(technique + ": light=" + std::to_string(light) + " but scene '" + frame.scene->name + "' has " + std::to_string(points) +
+                                " point light(s)");
+  const LocalLight& l = frame.localLights[light];
+  if (!(nearZ < l.range))
+    throw std::invalid_argument(technique + ": near=" + std::to_string(nearZ) + " is not below the range of point light " + std::to_string(light) + " (" +
+                                std::to_string(l.range) + ")");
+  return l;
 }
 
 LocalLightConstants PackLocalLights(const std::vector<LocalLight>& lights) {

@@ -27,4 +27,9 @@ static_assert(sizeof(LocalLightConstants) == 16 + 64 * kMaxLocalLights);
 void CheckLocalLights(const scene::Scene& scene);
 LocalLightConstants PackLocalLights(const std::vector<LocalLight>& lights);
 
+// The point light `light` that a point-light technique (cube, paraboloid) shadows this frame.
+// Throws std::invalid_argument naming the technique and the scene when the scene has no such
+// point light, or the technique's `near` when it is not below the light's range.
+const LocalLight& ShadowedPointLight(const std::string& technique, uint32_t light, float nearZ, const FrameInputs& frame);
+
 }  // namespace sp::tech

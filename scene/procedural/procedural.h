@@ -90,5 +90,7 @@ Scene MakeOverlappingOccluders(uint64_t budget);
 Scene MakeDistantOccluder(uint64_t budget);
 Scene MakePointLightRoom(uint64_t budget);
 Scene MakeCubeSeam(uint64_t budget);
+Scene MakeParaboloidCoarse(uint64_t budget);
+Scene MakeParaboloidFine(uint64_t budget);
 
 }  // namespace sp::scene::proc

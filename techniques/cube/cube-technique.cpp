@@ -22,6 +22,7 @@
 
 #include "cube/cube-culling.h"
 #include "cube/cube-faces.h"
+#include "local-lights.h"
 #include <sp/tech/technique.h>
 
 namespace sp::tech {
@@ -108,13 +109,9 @@ class CubeTechnique final : public Technique {
   void RenderShadows(DeviceContext& ctx, SceneDrawer& drawer, const FrameInputs& frame) override {
     GpuTimer::Scope timed(frame.timer, ctx, "shadow");
     const scene::Scene& s = *frame.scene;
-    size_t points = s.pointLights.size();
-    if (light_ >= points || light_ >= frame.localLights.size() || frame.localLights[light_].type != LocalLight::Point)
-      throw std::invalid_argument("cube: light=" + std::to_string(light_) + " but scene '" + s.name + "' has " + std::to_string(points) + " point light(s)");
-    for (uint32_t i = 0; i < points; ++i)
-      if (!(near_ < frame.localLights[i].range) && (allLights_ || i == light_))
-        throw std::invalid_argument("cube: near=" + std::to_string(near_) + " is not below the range of point light " + std::to_string(i) + " (" +
-                                    std::to_string(frame.localLights[i].range) + ")");
+    ShadowedPointLight("cube", light_, near_, frame);
+    if (allLights_)
+      for (uint32_t i = 0; i < s.pointLights.size(); ++i) ShadowedPointLight("cube", i, near_, frame);
 
     const glm::mat4 camera = frame.cameraProj * frame.cameraView;
     // Visible receivers: the instances whose boxes may meet the camera frustum.

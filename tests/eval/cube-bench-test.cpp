@@ -4,12 +4,10 @@
 // backends give the same metrics.
 #include <gtest/gtest.h>
 
-#include <filesystem>
 #include <string>
 
 #include "../techniques/cube-room.h"
-#include "bench.h"
-#include <sp/rhi/rhi.h>
+#include "bench-both-backends.h"
 
 namespace sp::test {
 namespace {
@@ -18,22 +16,7 @@ class CubeBench : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(CubeBench, PointLightTechniqueIsJudgedAgainstThePointLightReference) {
   CubeRoom room = MakeCubeRoom();
-  eval::ReferenceCache cache(room.scene, std::filesystem::path(SHADOWPORT_TEST_OUTPUT_DIR) / "reference-cache");
-  bench::RunResult r[2];
-  const Backend backends[2] = {Backend::Vulkan, Backend::OpenGL};
-  for (int i = 0; i < 2; ++i) {
-    bench::RunSpec spec;
-    spec.scene = &room.scene;
-    spec.technique = "cube";
-    spec.params = {{"resolution", "512"}, {"storage", GetParam()}};
-    spec.backend = backends[i];
-    spec.width = 160;
-    spec.height = 90;
-    spec.frames = 1;
-    spec.validate = true;
-    r[i] = bench::RunOne(spec, cache);
-    EXPECT_EQ(r[i].validationErrors, 0u) << BackendName(backends[i]) << ": " << r[i].lastValidationError;
-  }
+  std::array<bench::RunResult, 2> r = BenchOnBothBackends(room.scene, "cube", {{"resolution", "512"}, {"storage", GetParam()}}, 160, 90);
   const tech::LabBuffers& lab = r[0].firstFrame;
   size_t receiving = 0, referenceShadowed = 0;
   for (size_t i = 0; i < lab.size(); ++i)
@@ -45,13 +28,7 @@ TEST_P(CubeBench, PointLightTechniqueIsJudgedAgainstThePointLightReference) {
   EXPECT_LT(r[0].accuracy.misclassifiedPct(), 1.0) << "false lit " << r[0].accuracy.falseLitPct() << " %, false shadow " << r[0].accuracy.falseShadowPct() << " %";
   EXPECT_GT(r[0].texelsPerPixelMedian, 0.0);
   EXPECT_EQ(r[0].shadowMemoryBytes, 512u * 512u * 4u * (std::string(GetParam()) == "radial" ? 7u : 6u));
-  bool mesa = r[0].device.find("llvmpipe") != std::string::npos && r[1].device.find("llvmpipe") != std::string::npos;
-  if (mesa) {
-    EXPECT_EQ(r[0].accuracy.falseLit, r[1].accuracy.falseLit);
-    EXPECT_EQ(r[0].accuracy.falseShadow, r[1].accuracy.falseShadow);
-    EXPECT_EQ(r[0].accuracy.absErrorSum, r[1].accuracy.absErrorSum);
-    EXPECT_EQ(r[0].texelsPerPixelMedian, r[1].texelsPerPixelMedian);
-  }
+  ExpectSameAccuracyOnMesa(r, "cube");
   EXPECT_EQ(r[0].judgedLocalLight, 0);
   EXPECT_EQ(bench::RunToJson(r[0], {})["checks"]["judged_local_light"], 0);
   ::testing::Test::RecordProperty("misclassified_pct", std::to_string(r[0].accuracy.misclassifiedPct()));

@@ -27,7 +27,7 @@ using scene::Scene;
 
 const std::vector<std::string> kNames = {"default",          "terrain-city",          "canyon-city",      "dueling-frusta",  "grazing-light",
                                          "contact",          "overlapping-occluders", "distant-occluder", "point-light-room",
-                                         "cube-seam"};
+                                         "cube-seam",        "paraboloid-coarse",     "paraboloid-fine"};
 
 bool Finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
@@ -620,6 +620,67 @@ TEST(ProceduralSceneProperties, CubeSeamOccludersStraddleCubeFaceEdges) {
   EXPECT_GE(occluders, 5);
   EXPECT_EQ(onEdgePlane, 1);
   for (const Instance& i : s.instances) EXPECT_FALSE(Inside(s, i, L));
+}
+
+}  // namespace
+}  // namespace sp::test
+
+namespace sp::test {
+namespace {
+
+// The paraboloid pair: the same room, boxes, light and camera, differing only in triangle size:
+// the coarse room's surfaces are two triangles a face (its walls' triangles are over 4 m long),
+// the fine room's are split into triangles under 0.5 m; the light is enclosed and inside nothing.
+TEST(ProceduralSceneProperties, ParaboloidScenesDifferOnlyInTessellation) {
+  Scene coarse = scene::MakeBuiltinScene("paraboloid-coarse"), fine = scene::MakeBuiltinScene("paraboloid-fine");
+  ASSERT_EQ(coarse.pointLights.size(), 1u);
+  ASSERT_EQ(fine.pointLights.size(), 1u);
+  EXPECT_EQ(coarse.pointLights[0].position, fine.pointLights[0].position);
+  EXPECT_EQ(coarse.camera.position, fine.camera.position);
+  // The room: what lies above the ground the budget filler adds outside it.
+  auto room = [](const Scene& s) {
+    std::vector<const Instance*> r;
+    for (const Instance& i : s.instances)
+      if (i.worldBounds.max.y > -0.25f) r.push_back(&i);
+    return r;
+  };
+  std::vector<const Instance*> rc = room(coarse), rf = room(fine);
+  ASSERT_EQ(rc.size(), rf.size());
+  ASSERT_EQ(rc.size(), 12u);
+  auto longestEdge = [](const Scene& s, const Instance& i) {
+    const Mesh& m = s.meshes[i.mesh];
+    float longest = 0.0f;
+    for (size_t t = 0; t < m.indices.size(); t += 3)
+      for (int e = 0; e < 3; ++e) {
+        glm::vec3 a(i.transform * glm::vec4(m.vertices[m.indices[t + e]].position, 1.0f));
+        glm::vec3 b(i.transform * glm::vec4(m.vertices[m.indices[t + (e + 1) % 3]].position, 1.0f));
+        longest = std::max(longest, glm::distance(a, b));
+      }
+    return longest;
+  };
+  float coarseLongest = 0.0f, fineLongest = 0.0f;
+  for (size_t k = 0; k < rc.size(); ++k) {
+    EXPECT_LT(glm::distance(rc[k]->worldBounds.min, rf[k]->worldBounds.min), 1e-4f);
+    EXPECT_LT(glm::distance(rc[k]->worldBounds.max, rf[k]->worldBounds.max), 1e-4f);
+    EXPECT_EQ(rc[k]->albedo, rf[k]->albedo);
+    EXPECT_EQ(coarse.meshes[rc[k]->mesh].triangleCount(), k < 6 ? 2u : 12u);
+    coarseLongest = std::max(coarseLongest, longestEdge(coarse, *rc[k]));
+    fineLongest = std::max(fineLongest, longestEdge(fine, *rf[k]));
+  }
+  EXPECT_GT(coarseLongest, 4.0f);
+  EXPECT_LT(fineLongest, 0.5f);
+  const glm::vec3 L = coarse.pointLights[0].position;
+  for (const Scene* s : {&coarse, &fine}) {
+    for (const Instance& i : s->instances) EXPECT_FALSE(Inside(*s, i, L));
+    for (int x = -1; x <= 1; ++x)
+      for (int y = -1; y <= 1; ++y)
+        for (int z = -1; z <= 1; ++z) {
+          if (!x && !y && !z) continue;
+          float t = Cast(*s, L, glm::normalize(glm::vec3(x, y, z)));
+          EXPECT_GE(t, 0.0f);
+          EXPECT_LT(t, s->pointLights[0].range);
+        }
+  }
 }
 
 }  // namespace

@@ -8,6 +8,8 @@
 #include <cmath>
 #include <glm/ext/matrix_transform.hpp>
 #include <array>
+#include <map>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -217,6 +219,26 @@ inline RoomCheck CheckRoomImage(const CubeRoom& room, const scene::Camera& cam, 
     }
   if (c.wrong) WritePng(TestOutputDir() / ("room-" + std::to_string(int(cam.position.x * 10)) + ".png"), W, H, img.data());
   return c;
+}
+
+// A point-light technique (cube, paraboloid) refuses a light the room lacks and a near plane beyond
+// the light's range with errors naming the scene and the parameter. `render` configures the
+// technique with the given parameters and renders one frame of `room`.
+template <class Render>
+void ExpectBadPointLightChoicesRefused(const CubeRoom& room, Render render) {
+  try {
+    render(std::map<std::string, std::string>{{"light", "1"}});
+    ADD_FAILURE() << "expected an error for a light the scene does not have";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find(room.scene.name), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("1 point light"), std::string::npos) << e.what();
+  }
+  try {
+    render(std::map<std::string, std::string>{{"near", "20"}});
+    ADD_FAILURE() << "expected an error for near beyond the light's range";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("near"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace sp::test
