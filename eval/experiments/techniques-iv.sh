@@ -1,16 +1,24 @@
 #!/usr/bin/env bash
-# The measurements behind docs/techniques.md, "Local lights" (issue "Techniques IV: point and spot
-# lights", first part): the cube technique's two storages (planar window depth in a depth cube with
-# hardware comparison; radial distance in an R32_FLOAT cube compared in the shader) at three face
-# resolutions, for each point light of the point-light-room, on both backends against the Embree
-# reference traced from that point light; and the same on the cube-seam scene.
-#   eval/experiments/techniques-iv.sh [OUT_DIR] [WxH] [FRAMES]
+# The measurements behind docs/local-lights.md (issue "Techniques IV: point and spot lights"), on
+# both backends against the Embree reference traced from the judged point light:
+#  1-2. cube: the two storages (planar window depth with hardware comparison; radial distance in an
+#       R32_FLOAT cube compared in the shader) at three face resolutions, point-light-room and
+#       cube-seam;
+#  3.   the omni techniques side by side (cube, vsdct, paraboloid) on every point-light scene;
+#  4.   King's "VSDCT filtering > 2x faster than cube filtering": the lit pass's GPU time of cube
+#       (both storages) and vsdct at each kernel, the slow pan, REPEATS interleaved repetitions;
+#  5.   paraboloid's interpolation error: the same room in big and in small triangles;
+#  6.   culling and budgets on the street: faces and triangles with and without per-face culling,
+#       time against the number of shadowed lights;
+#  7.   one pass with the vertex shader choosing the face against six passes.
+#   eval/experiments/techniques-iv.sh [OUT_DIR] [WxH] [FRAMES] [REPEATS]
 # Writes OUT_DIR/<experiment>.json and prints the tables (techniques_iv_tables.py).
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 OUT="${1:-$ROOT/out/techniques-iv}"
 SIZE="${2:-640x360}"
 FRAMES="${3:-8}"
+REPEATS="${4:-3}"
 SP="$ROOT/shadowport"
 mkdir -p "$OUT"
 bench() { local name="$1"; shift; "$SP" bench --backend both --size "$SIZE" --frames "$FRAMES" --out "$OUT/$name.json" "$@"; }
@@ -21,5 +29,26 @@ bench cube-storage --scene point-light-room --path walk --technique cube --param
   --param resolution=256,512,1024 --param light=0,1
 # 2. The seam scene: every occluder's shadow crosses a cube-face edge (static camera).
 bench cube-seam --scene cube-seam --technique cube --param storage=depth,radial --param resolution=256,512,1024
+
+# 3. The omni techniques side by side, equal texels per direction as far as each allows.
+bench omni --scene point-light-room,cube-seam,furnished-room,lattice,street --technique cube,vsdct,paraboloid
+
+# 4. King's claim: filtering cost at each kernel (the slow pan: nearly the same pixels every frame).
+for rep in $(seq 1 "$REPEATS"); do
+  bench "king-$rep" --scene point-light-room,lattice \
+    --technique cube,cube:storage=radial,vsdct --param filter=hw2x2,box --param kernel=3,5,9
+done
+
+# 5. Coarse against fine geometry under the paraboloid's non-linear projection.
+bench paraboloid --scene paraboloid-coarse,paraboloid-fine --technique cube,paraboloid,paraboloid:depth=exact
+
+# 6. The street: per-face culling and the light budget.
+bench street-culling --scene street --technique cube:lights=all --param cull_faces=0,1 --param resolution_from=fixed,screen
+bench street-lights --scene street --technique cube:lights=all --param max_lights=1,2,4,8
+
+# 7. The six faces in one pass (vertex shader writes SV_RenderTargetArrayIndex) or six.
+for rep in $(seq 1 "$REPEATS"); do
+  bench "faces-pass-$rep" --scene point-light-room,lattice --technique cube --param faces_pass=per_face,single
+done
 
 /usr/bin/python3 "$ROOT/eval/experiments/techniques_iv_tables.py" "$OUT"
