@@ -14,6 +14,7 @@ std::unique_ptr<Technique> MakeLispsmTechnique();
 std::unique_ptr<Technique> MakeTsmTechnique();
 std::unique_ptr<Technique> MakeCubeTechnique();
 std::unique_ptr<Technique> MakeSpotTechnique();
+std::unique_ptr<Technique> MakeVsdctTechnique();
 std::unique_ptr<Technique> MakeParaboloidTechnique();
 
 namespace {
@@ -31,6 +32,7 @@ const Entry kTechniques[] = {
     {"tsm", MakeTsmTechnique},
     {"cube", MakeCubeTechnique},
     {"spot", MakeSpotTechnique},
+    {"vsdct", MakeVsdctTechnique},
     {"paraboloid", MakeParaboloidTechnique},
 };
 }  // namespace

@@ -16,6 +16,7 @@
 #include "backend-test.h"
 #include "cube/cube-faces.h"
 #include <sp/scene/scene.h>
+#include <sp/tech/renderer.h>
 
 namespace sp::test {
 
@@ -219,6 +220,25 @@ inline RoomCheck CheckRoomImage(const CubeRoom& room, const scene::Camera& cam, 
     }
   if (c.wrong) WritePng(TestOutputDir() / ("room-" + std::to_string(int(cam.position.x * 10)) + ".png"), W, H, img.data());
   return c;
+}
+
+// Renders the room with `r` (W x H) from the three RoomCameras and checks every pixel away from
+// shadow edges (CheckRoomImage; `cornerReachTexels` at face size `resolution`): none wrong, and
+// enough of them in shadow on every face and on both sides of the edge sphere's +X/-Y edge for
+// that to mean something.
+inline RoomCheck ExpectExactRoomShadows(tech::Renderer& r, const CubeRoom& room, uint32_t W, uint32_t H, float cornerReachTexels, float resolution) {
+  RoomCheck total;
+  for (const scene::Camera& cam : RoomCameras(room)) {
+    r.RenderFrame(cam, room.scene.light);
+    total.add(CheckRoomImage(room, cam, r.ReadColor(), W, H, 1, cornerReachTexels, resolution));
+  }
+  EXPECT_EQ(total.wrong, 0) << "of " << total.checked << " pixels checked";
+  EXPECT_GT(total.checked, 20000);
+  EXPECT_GT(total.shadowed, 2000);
+  for (int f = 0; f < 6; ++f) EXPECT_GT(total.shadowPerFace[f], 40) << "shadow pixels checked on face " << f;
+  EXPECT_GT(total.edgeShadowPerFace[0], 20);
+  EXPECT_GT(total.edgeShadowPerFace[3], 20);
+  return total;
 }
 
 // A point-light technique (cube, paraboloid) refuses a light the room lacks and a near plane beyond

@@ -67,21 +67,8 @@ void CheckRoomShadows(CubeTechniqueTest& t, const std::map<std::string, std::str
   // A kernel's taps reach its half width plus the bilinear texel; its penumbra on the room's walls
   // stays within the one-pixel band at 512 texels per face up to 5x5.
   float reach = params.count("filter") && params.at("filter") != "hw2x2" ? float(std::stoi(params.at("kernel")) / 2 + 1) : 0.0f;
-  const uint32_t W = 160, H = 120;
   CubeRoom room = MakeCubeRoom();
-  std::unique_ptr<tech::Renderer> r = t.MakeRenderer(room.scene, W, H, params);
-  RoomCheck total;
-  for (const scene::Camera& cam : RoomCameras(room)) {
-    r->RenderFrame(cam, room.scene.light);
-    total.add(CheckRoomImage(room, cam, r->ReadColor(), W, H, 1, reach, std::stof(params.at("resolution"))));
-  }
-  EXPECT_EQ(total.wrong, 0) << "of " << total.checked << " pixels checked";
-  EXPECT_GT(total.checked, 20000);
-  EXPECT_GT(total.shadowed, 2000);
-  for (int f = 0; f < 6; ++f) EXPECT_GT(total.shadowPerFace[f], 40) << "shadow pixels checked on face " << f;
-  // The edge sphere's shadow is checked on both sides of the +X/-Y edge.
-  EXPECT_GT(total.edgeShadowPerFace[0], 20);
-  EXPECT_GT(total.edgeShadowPerFace[3], 20);
+  ExpectExactRoomShadows(*t.MakeRenderer(room.scene, 160, 120, params), room, 160, 120, reach, std::stof(params.at("resolution")));
 }
 
 // Kernels wider than 2x2 step across face edges onto the neighbouring face: the exact shadows
