@@ -5,6 +5,7 @@
 // has all of the other shape's corners outside it.
 #pragma once
 #include <glm/glm.hpp>
+#include <vector>
 
 #include <sp/scene/scene.h>
 
@@ -56,6 +57,26 @@ inline bool FaceMayMeetCamera(int f, const glm::vec3& light, float nearZ, float 
     pyr[i + 1] = camera * glm::vec4(light + range * d, 1.0f);
   }
   return !AllOutsideOnePlane(pyr, 5);
+}
+
+// The visible receivers: the instances whose boxes may meet the camera frustum.
+inline std::vector<uint32_t> VisibleInstances(const scene::Scene& s, const glm::mat4& camera) {
+  std::vector<uint32_t> visible;
+  for (uint32_t i = 0; i < s.instances.size(); ++i)
+    if (BoxMayMeetFrustum(camera, s.instances[i].worldBounds)) visible.push_back(i);
+  return visible;
+}
+
+// Whether face f of a light must be rendered: its frustum, widened by `widen` (the lookup's reach
+// past the face's edge), may meet the camera frustum and the box of a visible receiver (King:
+// "skip faces whose frustum does not meet the view frustum or any visible receiver").
+inline bool FaceNeeded(int f, const glm::vec3& light, float nearZ, float range, float widen, const glm::mat4& camera, const scene::Scene& s,
+                       const std::vector<uint32_t>& visible) {
+  if (!FaceMayMeetCamera(f, light, nearZ, range, widen, camera)) return false;
+  glm::mat4 face = FaceViewProj(f, light, nearZ, range);
+  for (uint32_t v : visible)
+    if (BoxMayMeetFrustum(face, s.instances[v].worldBounds, widen)) return true;
+  return false;
 }
 
 }  // namespace sp::tech::cube

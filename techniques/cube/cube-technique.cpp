@@ -114,10 +114,7 @@ class CubeTechnique final : public Technique {
       for (uint32_t i = 0; i < s.pointLights.size(); ++i) ShadowedPointLight("cube", i, near_, frame);
 
     const glm::mat4 camera = frame.cameraProj * frame.cameraView;
-    // Visible receivers: the instances whose boxes may meet the camera frustum.
-    visible_.clear();
-    for (uint32_t i = 0; i < s.instances.size(); ++i)
-      if (cube::BoxMayMeetFrustum(camera, s.instances[i].worldBounds)) visible_.push_back(i);
+    visible_ = cube::VisibleInstances(s, camera);
 
     std::vector<uint32_t> chosen = ChooseLights(frame, camera);
     Constants c{};
@@ -285,7 +282,7 @@ class CubeTechnique final : public Technique {
     for (int f = 0; f < 6; ++f) {
       glm::mat4 viewProj = cube::FaceViewProj(f, l.position, near_, l.range);
       // A skipped face is still cleared (to lit), so no earlier frame's depths remain in it.
-      bool skip = cullFaces_ && !FaceNeeded(f, l, camera, widen, frame);
+      bool skip = cullFaces_ && !cube::FaceNeeded(f, l.position, near_, l.range, widen, camera, *frame.scene, visible_);
       if (!skip) ++facesRendered_;
       auto keep = [&](uint32_t i) { return !skip && cube::BoxMayMeetFrustum(viewProj, instances[i].worldBounds); };
       if (radial_) {
@@ -302,15 +299,6 @@ class CubeTechnique final : public Technique {
         trianglesSubmitted_ += drawer.DrawDepth(ctx, viewProj, keep);
       }
     }
-  }
-
-  // A face is needed when its (widened) frustum may meet the camera's and a visible receiver.
-  bool FaceNeeded(int f, const LocalLight& l, const glm::mat4& camera, float widen, const FrameInputs& frame) const {
-    if (!cube::FaceMayMeetCamera(f, l.position, near_, l.range, widen, camera)) return false;
-    glm::mat4 face = cube::FaceViewProj(f, l.position, near_, l.range);
-    for (uint32_t v : visible_)
-      if (cube::BoxMayMeetFrustum(face, frame.scene->instances[v].worldBounds, widen)) return true;
-    return false;
   }
 
   // cbuffer CubeShadow in shaders-hlsl/cube/constants.hlsli.

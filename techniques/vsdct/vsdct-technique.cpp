@@ -29,6 +29,7 @@
 // guard band of the other tile, where the answer is the same.
 // guard = 0: no band; taps are clamped into the face's R x R texels (shadow-filter's uvClamp),
 // which is the seam error the guard bands remove.
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -59,6 +60,7 @@ class VsdctTechnique final : public Technique {
          "5", 0, 64, {}},
         {ParamSpec::Int, "receiver_plane", "1: each tap compares the receiver's plane at the tap (exact, from the normal) and a texel's slope less, so wide kernels have no acne; 0: the centre's depth for every tap",
          "1", 0, 1, {}},
+        {ParamSpec::Int, "cull_faces", "1: skip the faces whose frustum (widened by the guard band) meets neither the camera's nor a visible receiver (their tiles stay cleared: lit)", "1", 0, 1, {}},
     };
   }
 
@@ -67,6 +69,7 @@ class VsdctTechnique final : public Technique {
     resolution_ = uint32_t(p.getInt("resolution"));
     near_ = p.getFloat("near");
     guard_ = uint32_t(p.getInt("guard"));
+    cullFaces_ = p.getInt("cull_faces") != 0;
     for (int i = 0; i < 5; ++i)
       if (p.getChoice("filter") == kFilters[i]) filter_ = i;
     kernel_ = p.getInt("kernel");
@@ -164,8 +167,15 @@ class VsdctTechnique final : public Technique {
     ctx.RSSetState(rasterizer_.get());
     ctx.OMSetDepthStencilState(nullptr, 0);
     trianglesSubmitted_ = 0;
+    facesRendered_ = 0;
     const std::vector<scene::Instance>& instances = frame.scene->instances;
+    const glm::mat4 camera = frame.cameraProj * frame.cameraView;
+    const std::vector<uint32_t> visible = cube::VisibleInstances(*frame.scene, camera);
+    // A lookup reads its tile up to the guard band (or one texel, clamped) past the face's edge.
+    const float widen = 1.0f + 2.0f * float(std::max(guard_, 1u) + 1) / float(resolution_);
     for (int f = 0; f < 6; ++f) {
+      if (cullFaces_ && !cube::FaceNeeded(f, l.position, near_, l.range, widen, camera, *frame.scene, visible)) continue;
+      ++facesRendered_;
       glm::uvec2 o = TileOrigin(f);
       VIEWPORT vp{float(o.x), float(o.y), float(tile_), float(tile_), 0, 1};
       RECT sc{int32_t(o.x), int32_t(o.y), int32_t(o.x + tile_), int32_t(o.y + tile_)};
@@ -189,7 +199,7 @@ class VsdctTechnique final : public Technique {
   }
 
   // The atlas (guard bands included) and the 6 x 16-byte indirection cube.
-  ShadowStats Stats() const override { return {uint64_t(3 * tile_) * (2 * tile_) * 4 + 6 * 16, trianglesSubmitted_, 6}; }
+  ShadowStats Stats() const override { return {uint64_t(3 * tile_) * (2 * tile_) * 4 + 6 * 16, trianglesSubmitted_, facesRendered_}; }
   // The lab's layers are the faces, texels within the face's R x R (the guard band is not a
   // face's own area: its texels duplicate the neighbours'), as cube reports them.
   std::vector<ShadowLayer> Layers() const override { return std::vector<ShadowLayer>(6, {resolution_, resolution_}); }
@@ -232,6 +242,8 @@ class VsdctTechnique final : public Technique {
   Ref<SamplerState> cmpSampler_, pointSampler_;
   Ref<Buffer> constants_;
   uint64_t trianglesSubmitted_ = 0;
+  uint32_t facesRendered_ = 0;
+  bool cullFaces_ = true;
 };
 
 }  // namespace

@@ -261,4 +261,34 @@ void ExpectBadPointLightChoicesRefused(const CubeRoom& room, Render render) {
   }
 }
 
+// A floor under a point light, seen from above: the camera frustum reaches above the light, but
+// nothing there receives a shadow, so a technique culling faces against visible receivers renders
+// 5 faces (not +Y) where it renders 6 without culling, and the same picture. `make(scene, w, h,
+// cull)` builds the technique's renderer with cull_faces=cull.
+template <class MakeRenderer>
+void ExpectTheFaceWithoutReceiversSkipped(MakeRenderer make) {
+  scene::Scene s;
+  s.name = "floor-under-a-light";
+  s.addInstance(s.addMesh(scene::MakePlane(2)), glm::scale(glm::mat4(1.0f), glm::vec3(10.0f, 1.0f, 10.0f)), glm::vec3(0.8f));
+  s.addInstance(s.addMesh(scene::MakeSphere(24, 12)), glm::translate(glm::mat4(1.0f), glm::vec3(1.0f, 1.0f, 0.0f)), glm::vec3(0.5f));
+  s.light.color = glm::vec3(0.0f);
+  s.light.ambient = 0.05f;
+  s.pointLights.push_back({{0.0f, 2.0f, 0.0f}, {5.0f, 5.0f, 5.0f}, 16.0f});
+  s.camera.position = {0.0f, 12.0f, 8.0f};
+  s.camera.target = {0.0f, 0.0f, 0.0f};
+  s.finalize();
+  const uint32_t W = 96, H = 72;
+  std::vector<uint8_t> img[2];
+  uint32_t faces[2] = {};
+  for (int cull = 0; cull < 2; ++cull) {
+    auto r = make(s, W, H, cull);
+    r->RenderFrame(s.camera, s.light);
+    img[cull] = r->ReadColor();
+    faces[cull] = r->technique().Stats().layersRendered;
+  }
+  EXPECT_EQ(faces[0], 6u);
+  EXPECT_EQ(faces[1], 5u) << "only the +Y face (nothing above the light) may be skipped";
+  EXPECT_EQ(CompareImages("cull-receivers", W, H, img[0].data(), img[1].data(), 0), 0u);
+}
+
 }  // namespace sp::test

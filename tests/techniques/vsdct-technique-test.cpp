@@ -181,6 +181,13 @@ TEST_P(VsdctTechniqueTest, GuardBandsRemoveTheSeamThatClampingLeaves) {
                                               << " of " << n[1].farChecked << " elsewhere";
 }
 
+// Faces without a visible receiver are not rendered (their tiles stay cleared), as in cube.
+TEST_P(VsdctTechniqueTest, FacesWithoutVisibleReceiversAreSkipped) {
+  ExpectTheFaceWithoutReceiversSkipped([&](const scene::Scene& s, uint32_t w, uint32_t h, int cull) {
+    return MakeRenderer(s, w, h, {{"resolution", "256"}, {"cull_faces", std::to_string(cull)}});
+  });
+}
+
 TEST_P(VsdctTechniqueTest, BadParametersAndLightsAreErrors) {
   CubeRoom room = MakeCubeRoom();
   auto render = [&](const std::map<std::string, std::string>& params) { MakeRenderer(room.scene, 16, 16, params)->RenderFrame(room.scene.camera, room.scene.light); };
