@@ -128,6 +128,15 @@ RunResult RunOne(const RunSpec& spec, eval::ReferenceCache& reference, const Pro
                                   std::to_string(local.size()));
     const tech::LocalLight& l = local[k];
     r.judgedLocalLight = k;
+    if (l.type == tech::LocalLight::Point) {
+      // Two texels of the technique's cube faces; a technique whose layers are not six equal
+      // square faces (not a cube map) is measured with the band of `cube`'s default 512.
+      std::vector<tech::ShadowLayer> layers = tech.Layers();
+      bool cubeFaces = layers.size() == 6 && std::all_of(layers.begin(), layers.end(), [&](const tech::ShadowLayer& f) {
+        return f.width == layers[0].width && f.height == layers[0].width && f.width > 2;
+      });
+      r.seamBand = eval::SeamBandFor(cubeFaces ? layers[0].width : 512u);
+    }
     light = l.type == tech::LocalLight::Spot ? eval::ReferenceLight::MakeSpot(l.position, l.direction, l.cosOuter) : eval::ReferenceLight::MakePoint(l.position);
   }
   // The cache's tracer uses the default options (bench.cpp), so its resolution is known without
@@ -163,6 +172,11 @@ RunResult RunOne(const RunSpec& spec, eval::ReferenceCache& reference, const Pro
 
     eval::Accuracy a = eval::MeasureAccuracy(now, ref.data());
     r.accuracy.add(a);
+    if (r.seamBand > 0) {
+      eval::SeamAccuracy seam = eval::MeasureSeamAccuracy(now, ref.data(), light.position, r.seamBand);
+      r.seam.band.add(seam.band);
+      r.seam.elsewhere.add(seam.elsewhere);
+    }
     r.misclassifiedSeries.push_back(a.misclassifiedPct());
     eval::AddTexelDensity(now, density);
     eval::LogHistogram frameDensity;
