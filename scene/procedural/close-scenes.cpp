@@ -126,11 +126,9 @@ Scene MakePointLightRoom(uint64_t budget) {
   // and is dim (and blocked by the ceiling anyway).
   const glm::vec3 lo(-6.0f, 0.0f, -4.5f), hi(6.0f, 3.6f, 4.5f);
   const float t = 0.25f;
-  int n = LevelForBudget(1, 512, budget / 4, [](int c) { return uint64_t(5) * 12 * c * c; });
-  uint32_t slab = s.addMesh(MakeGridBox(n, "wall"));
   const glm::vec3 plaster(0.80f, 0.78f, 0.74f);
   glm::vec3 size = hi - lo, mid = (hi + lo) * 0.5f;
-  AddRoomShell(s, slab, lo, hi, t, plaster);
+  AddRoomShell(s, lo, hi, t, plaster, budget / 4);
 
   // Furniture: legs, shelves and table tops throw the many small, overlapping omni shadows.
   const int boxesInFurniture = 10 + 7 + 4 + 8 * 11;  // two tables, a shelf, a cabinet and crates, eight chairs

@@ -92,7 +92,9 @@ void AddBoxPart(Mesh& dst, const Mesh& box, glm::vec3 center, glm::vec3 size) {
   AppendMesh(dst, box, glm::scale(glm::translate(glm::mat4(1.0f), center), size));
 }
 
-void AddRoomShell(Scene& s, uint32_t slab, const glm::vec3& lo, const glm::vec3& hi, float t, const glm::vec3& albedo) {
+void AddRoomShell(Scene& s, const glm::vec3& lo, const glm::vec3& hi, float t, const glm::vec3& albedo, uint64_t triangles) {
+  int n = LevelForBudget(1, 512, triangles, [](int c) { return uint64_t(5) * 12 * c * c; });
+  uint32_t slab = s.addMesh(MakeGridBox(n, "wall"));
   glm::vec3 size = hi - lo, mid = (hi + lo) * 0.5f;
   s.addInstance(slab, Place({lo.x - t * 0.5f, mid.y, mid.z}, {t, size.y, size.z + 2 * t}), albedo);
   s.addInstance(slab, Place({hi.x + t * 0.5f, mid.y, mid.z}, {t, size.y, size.z + 2 * t}), albedo);

@@ -129,8 +129,7 @@ Scene MakeFurnishedRoom(uint64_t budget) {
   // on the four sides at heights within 45 degrees of the light's horizon, so every face of its
   // shadow cube but none by accident sees furniture.
   const glm::vec3 lo(-3.5f, 0.0f, -3.0f), hi(3.5f, 2.8f, 3.0f);
-  int n = LevelForBudget(1, 512, budget / 4, [](int c) { return uint64_t(5) * 12 * c * c; });
-  AddRoomShell(s, s.addMesh(MakeGridBox(n, "wall")), lo, hi, 0.2f, {0.82f, 0.80f, 0.74f});
+  AddRoomShell(s, lo, hi, 0.2f, {0.82f, 0.80f, 0.74f}, budget / 4);
 
   const int boxesInFurniture = 5 + 4 * 11 + 7 + 11 + 5 + 6 + 2;  // table, four chairs, shelf, sofa, sideboard, wardrobe, shade and cord
   int k = LevelForBudget(1, 128, budget * 35 / 100, [&](int c) { return uint64_t(boxesInFurniture) * 12 * c * c; });
@@ -239,8 +238,7 @@ Scene MakeLattice(uint64_t budget) {
   // shadow is a grid on the floor, the ceiling or a wall, magnified about 6 times, and the bars on
   // the cage's edges lie in the cube's face-edge planes.
   const glm::vec3 lo(-4.0f, 0.0f, -4.0f), hi(4.0f, 4.0f, 4.0f);
-  int n = LevelForBudget(1, 512, budget / 4, [](int c) { return uint64_t(5) * 12 * c * c; });
-  AddRoomShell(s, s.addMesh(MakeGridBox(n, "wall")), lo, hi, 0.2f, {0.82f, 0.80f, 0.76f});
+  AddRoomShell(s, lo, hi, 0.2f, {0.82f, 0.80f, 0.76f}, budget / 4);
 
   const glm::vec3 light(0.0f, 1.6f, 0.0f);
   const float half = 0.5f, bar = 0.025f;

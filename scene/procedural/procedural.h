@@ -51,9 +51,9 @@ Mesh MakeShelf(int cells);
 void AddBoxPart(Mesh& dst, const Mesh& box, glm::vec3 center, glm::vec3 size);
 
 // A closed room's four walls and ceiling (slabs `t` thick outside the inside box lo..hi; the walls
-// overlap at the corners so no light leaks there), instances of `slab` (a MakeGridBox). The floor
-// is the scene's, under the walls.
-void AddRoomShell(Scene& s, uint32_t slab, const glm::vec3& lo, const glm::vec3& hi, float t, const glm::vec3& albedo);
+// overlap at the corners so no light leaks there): five instances of one "wall" grid box split
+// finely enough to spend about `triangles`. The floor is the scene's, under the walls.
+void AddRoomShell(Scene& s, const glm::vec3& lo, const glm::vec3& hi, float t, const glm::vec3& albedo, uint64_t triangles);
 
 // A flat receiver at y = center.y facing +y covering size.x by size.y (x, z), as tiles x tiles
 // instances of one subdivided grid, with about `triangles` triangles (at least 2 per tile):
