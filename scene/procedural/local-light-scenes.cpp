@@ -69,13 +69,18 @@ void DimSun(Scene& s) {
   s.light.ambient = 0.06f;
 }
 
+// Legs or wheels: four parts of `size` centred at (+-at.x, at.y, +-at.z).
+void AddFourParts(Mesh& m, const Mesh& box, glm::vec3 at, glm::vec3 size) {
+  for (float x : {-at.x, at.x})
+    for (float z : {-at.z, at.z}) AddBoxPart(m, box, {x, at.y, z}, size);
+}
+
 // A three-seat sofa 2.1 x 0.85 x 0.9 m (back towards -z) on four short legs, standing on y = 0.
 Mesh MakeSofa(int cells) {
   Mesh box = MakeGridBox(cells);
   Mesh m;
   m.name = "sofa";
-  for (float x : {-0.98f, 0.98f})
-    for (float z : {-0.38f, 0.38f}) AddBoxPart(m, box, {x, 0.05f, z}, {0.06f, 0.1f, 0.06f});
+  AddFourParts(m, box, {0.98f, 0.05f, 0.38f}, {0.06f, 0.1f, 0.06f});
   AddBoxPart(m, box, {0.0f, 0.27f, 0.0f}, {2.1f, 0.34f, 0.9f});          // seat
   AddBoxPart(m, box, {0.0f, 0.62f, -0.36f}, {2.1f, 0.46f, 0.18f});       // back
   for (float x : {-0.97f, 0.97f}) AddBoxPart(m, box, {x, 0.55f, 0.05f}, {0.16f, 0.22f, 0.8f});  // arms
@@ -87,8 +92,7 @@ Mesh MakeSideboard(int cells) {
   Mesh box = MakeGridBox(cells);
   Mesh m;
   m.name = "sideboard";
-  for (float x : {-0.74f, 0.74f})
-    for (float z : {-0.18f, 0.18f}) AddBoxPart(m, box, {x, 0.075f, z}, {0.05f, 0.15f, 0.05f});
+  AddFourParts(m, box, {0.74f, 0.075f, 0.18f}, {0.05f, 0.15f, 0.05f});
   AddBoxPart(m, box, {0.0f, 0.525f, 0.0f}, {1.6f, 0.75f, 0.45f});
   return m;
 }
@@ -98,8 +102,7 @@ Mesh MakeCar(int cells) {
   Mesh box = MakeGridBox(cells);
   Mesh m;
   m.name = "car";
-  for (float x : {-0.78f, 0.78f})
-    for (float z : {-1.35f, 1.35f}) AddBoxPart(m, box, {x, 0.31f, z}, {0.22f, 0.62f, 0.62f});
+  AddFourParts(m, box, {0.78f, 0.31f, 1.35f}, {0.22f, 0.62f, 0.62f});
   AddBoxPart(m, box, {0.0f, 0.7f, 0.0f}, {1.8f, 0.7f, 4.2f});
   AddBoxPart(m, box, {0.0f, 1.32f, -0.3f}, {1.6f, 0.55f, 2.2f});
   return m;
