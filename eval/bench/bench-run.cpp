@@ -143,6 +143,7 @@ RunResult RunOne(const RunSpec& spec, eval::ReferenceCache& reference, const Pro
   // building a tracer when every frame comes from the cache.
   r.referenceEpsilon = eval::ReferenceOptions{}.relativeEpsilon * eval::ReferenceSceneScale(scene);
   eval::LogHistogram density;
+  std::array<eval::LogHistogram, 6> densityByFace;
   double utilizationSum = 0;
   tech::LabBuffers prev;
   std::vector<float> prevReference;
@@ -176,6 +177,7 @@ RunResult RunOne(const RunSpec& spec, eval::ReferenceCache& reference, const Pro
       eval::SeamAccuracy seam = eval::MeasureSeamAccuracy(now, ref.data(), light.position, r.seamBand);
       r.seam.band.add(seam.band);
       r.seam.elsewhere.add(seam.elsewhere);
+      eval::AddTexelDensityByFace(now, light.position, densityByFace);
     }
     r.misclassifiedSeries.push_back(a.misclassifiedPct());
     eval::AddTexelDensity(now, density);
@@ -214,6 +216,7 @@ RunResult RunOne(const RunSpec& spec, eval::ReferenceCache& reference, const Pro
   r.texelsPerPixelMedian = density.percentile(0.5);
   r.texelsPerPixelP05 = density.percentile(0.05);
   r.densitySamples = density.count();
+  for (int f = 0; f < 6; ++f) r.texelsPerPixelMedianByFace[f] = densityByFace[f].percentile(0.5);
   r.utilization = spec.frames ? utilizationSum / spec.frames : 0.0;
   ctx.ClearState();
   ctx.WaitIdle();

@@ -197,6 +197,9 @@ nlohmann::json RunToJson(const RunResult& r, const std::map<std::string, std::st
     run["checks"]["seam_band"] = r.seamBand;
     run["checks"]["seam_pixels"] = r.seam.band.receiving;
     run["checks"]["off_seam_pixels"] = r.seam.elsewhere.receiving;
+    nlohmann::json byFace = nlohmann::json::object();
+    for (int f = 0; f < 6; ++f) byFace[eval::kCubeFaceNames[f]] = r.texelsPerPixelMedianByFace[f];
+    run["metrics"]["texels_per_pixel_median_by_face"] = byFace;
   }
   if (!r.lastValidationError.empty()) run["checks"]["last_validation_error"] = r.lastValidationError;
   if (!images.empty()) run["images"] = images;

@@ -14,6 +14,7 @@
 // The two phases are separate so the lab's extra render targets and read-backs never inflate the
 // timings.
 #pragma once
+#include <array>
 #include <filesystem>
 #include <functional>
 #include <map>
@@ -76,6 +77,9 @@ struct RunResult {
   // elsewhere (eval::MeasureSeamAccuracy), over all frames; seamBand 0 when not measured.
   eval::SeamAccuracy seam;
   float seamBand = 0;
+  // Texels per pixel per cube face of the pixels' directions from that point light (median over
+  // all frames, 0 for a face no judged pixel read; eval::kCubeFaceNames order).
+  std::array<double, 6> texelsPerPixelMedianByFace{};
 
   uint64_t validationErrors = 0, disjointFrames = 0;
   bool validationEnabled = false;           // the layers / debug output were really on

@@ -94,6 +94,18 @@ void AddTexelDensity(const tech::LabBuffers& lab, LogHistogram& h) {
     if (lab.receiving(i) && lab.lookup[i].x >= 0.0f) h.add(lab.lookup[i].w);
 }
 
+int CubeFace(const glm::vec3& d) {
+  glm::vec3 a = glm::abs(d);
+  if (a.z >= a.x && a.z >= a.y) return d.z >= 0 ? 4 : 5;
+  if (a.y >= a.x) return d.y >= 0 ? 2 : 3;
+  return d.x >= 0 ? 0 : 1;
+}
+
+void AddTexelDensityByFace(const tech::LabBuffers& lab, const glm::vec3& light, std::array<LogHistogram, 6>& h) {
+  for (size_t i = 0; i < lab.size(); ++i)
+    if (lab.receiving(i) && lab.lookup[i].x >= 0.0f) h[size_t(CubeFace(glm::vec3(lab.position[i]) - light))].add(lab.lookup[i].w);
+}
+
 // --- Utilization
 
 double MeasureUtilization(const tech::LabBuffers& lab, const std::vector<tech::ShadowLayer>& layers) {

@@ -84,6 +84,13 @@ class LogHistogram {
 // Adds the texels per pixel of receiving pixels whose lookup read a map (layer >= 0).
 void AddTexelDensity(const tech::LabBuffers& lab, LogHistogram& histogram);
 
+// D3D11's cube face of a direction: 0..5 for +X, -X, +Y, -Y, +Z, -Z (ties to z, then y), as
+// techniques/cube/cube-faces.h selects it.
+int CubeFace(const glm::vec3& d);
+constexpr const char* kCubeFaceNames[6] = {"+X", "-X", "+Y", "-Y", "+Z", "-Z"};
+// AddTexelDensity per cube face of the pixels' directions from a point light at `light`.
+void AddTexelDensityByFace(const tech::LabBuffers& lab, const glm::vec3& light, std::array<LogHistogram, 6>& histograms);
+
 // --- Utilization: fraction of all layers' texels that some receiving pixel's lookup is centred in.
 double MeasureUtilization(const tech::LabBuffers& lab, const std::vector<tech::ShadowLayer>& layers);
 

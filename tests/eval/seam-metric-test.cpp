@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <filesystem>
 #include <string>
 
@@ -108,6 +109,32 @@ TEST(SeamMetric, ErrorsAlongTheSeamsCountInTheBandAndErrorsElsewhereOutsideIt) {
   EXPECT_THROW(eval::MeasureSeamAccuracy(g.lab, g.reference.data(), g.light, 1.5f), std::invalid_argument);
 }
 
+// Texels per pixel per face: each pixel's density set to its face's number (+1) is found again
+// under that face, by D3D11's face selection; the floor under the light never sees +Y.
+TEST(SeamMetric, TexelDensityIsSplitByTheCubeFaceOfTheDirection) {
+  for (int f = 0; f < 6; ++f) {
+    tech::cube::FaceAxes ax = tech::cube::Face(f);
+    for (glm::vec2 st : {glm::vec2(0.0f), glm::vec2(0.9f, -0.4f), glm::vec2(-0.99f, 0.99f)})
+      EXPECT_EQ(eval::CubeFace(ax.major + st.x * ax.s + st.y * ax.t), f);
+  }
+  EXPECT_EQ(eval::CubeFace({1, 1, 1}), tech::cube::FaceOf({1, 1, 1}));
+  EXPECT_EQ(eval::CubeFace({-1, -1, 0.5f}), tech::cube::FaceOf({-1, -1, 0.5f}));
+  FloorFrame fr = MakeFloorFrame(0.01f);
+  for (size_t i = 0; i < fr.lab.size(); ++i)
+    fr.lab.lookup[i] = glm::vec4(0, 0, 0, float(tech::cube::FaceOf(glm::vec3(fr.lab.position[i]) - fr.light) + 1));
+  std::array<eval::LogHistogram, 6> h;
+  eval::AddTexelDensityByFace(fr.lab, fr.light, h);
+  for (int f = 0; f < 6; ++f) {
+    SCOPED_TRACE(eval::kCubeFaceNames[f]);
+    if (f == 2) {
+      EXPECT_EQ(h[f].count(), 0u);
+      continue;
+    }
+    EXPECT_GT(h[f].count(), 1000u);
+    EXPECT_DOUBLE_EQ(h[f].percentile(0.5), double(f + 1));
+  }
+}
+
 bench::RunResult RunOn(const scene::Scene& s, Backend backend, uint32_t w, uint32_t h) {
   eval::ReferenceCache cache(s, std::filesystem::path(SHADOWPORT_TEST_OUTPUT_DIR) / "reference-cache");
   bench::RunSpec spec;
@@ -136,6 +163,9 @@ TEST(SeamBench, CubeOnCubeSeamIsMeasuredInAndOutsideTheSeamBandAlikeOnBothBacken
   EXPECT_EQ(j["checks"]["seam_pixels"], r[0].seam.band.receiving);
   EXPECT_EQ(j["checks"]["off_seam_pixels"], r[0].seam.elsewhere.receiving);
   EXPECT_TRUE(j["metrics"].contains("seam_misclassified_pct") && j["metrics"].contains("off_seam_misclassified_pct"));
+  // The camera sees the floor (-Y) and the two walls (+X, +Z) lit by the light.
+  for (int f : {0, 3, 4}) EXPECT_GT(r[0].texelsPerPixelMedianByFace[f], 0.5) << eval::kCubeFaceNames[f];
+  EXPECT_EQ(j["metrics"]["texels_per_pixel_median_by_face"]["-Y"], r[0].texelsPerPixelMedianByFace[3]);
   std::printf("cube-seam 256x144: seam band %.3f %% of %llu px, elsewhere %.3f %% of %llu px (Vulkan); %.3f %% / %.3f %% (GL)\n",
               r[0].seam.band.misclassifiedPct(), (unsigned long long)r[0].seam.band.receiving, r[0].seam.elsewhere.misclassifiedPct(),
               (unsigned long long)r[0].seam.elsewhere.receiving, r[1].seam.band.misclassifiedPct(), r[1].seam.elsewhere.misclassifiedPct());
@@ -151,6 +181,7 @@ TEST(SeamBench, CubeOnCubeSeamIsMeasuredInAndOutsideTheSeamBandAlikeOnBothBacken
     EXPECT_EQ(r[0].seam.band.falseShadow, r[1].seam.band.falseShadow);
     EXPECT_EQ(r[0].seam.elsewhere.falseLit, r[1].seam.elsewhere.falseLit);
     EXPECT_EQ(r[0].seam.elsewhere.falseShadow, r[1].seam.elsewhere.falseShadow);
+    EXPECT_EQ(r[0].texelsPerPixelMedianByFace, r[1].texelsPerPixelMedianByFace);
   }
 }
 
