@@ -74,7 +74,8 @@ struct RunResult {
   scene::DirectionalLight light;
   int judgedLocalLight = -1;                // Technique::LabLocalLight: -1 the directional light
   // Where a point light is judged: accuracy inside the band around its cube-face edges and
-  // elsewhere (eval::MeasureSeamAccuracy), over all frames; seamBand 0 when not measured.
+  // elsewhere (eval::MeasureSeamAccuracy), over all frames; seamBand (the first frame's) 0 when
+  // not measured.
   eval::SeamAccuracy seam;
   float seamBand = 0;
   // Texels per pixel per cube face of the pixels' directions from that point light (median over

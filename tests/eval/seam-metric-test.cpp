@@ -11,6 +11,7 @@
 #include <string>
 
 #include "../techniques/cube-room.h"
+#include "bench-both-backends.h"
 #include "bench.h"
 #include "cube/cube-faces.h"
 #include "metrics.h"
@@ -135,27 +136,13 @@ TEST(SeamMetric, TexelDensityIsSplitByTheCubeFaceOfTheDirection) {
   }
 }
 
-bench::RunResult RunOn(const scene::Scene& s, Backend backend, uint32_t w, uint32_t h) {
-  eval::ReferenceCache cache(s, std::filesystem::path(SHADOWPORT_TEST_OUTPUT_DIR) / "reference-cache");
-  bench::RunSpec spec;
-  spec.scene = &s;
-  spec.technique = "cube";
-  spec.backend = backend;
-  spec.width = w;
-  spec.height = h;
-  spec.frames = 1;
-  spec.validate = true;
-  bench::RunResult r = bench::RunOne(spec, cache);
-  EXPECT_EQ(r.validationErrors, 0u) << BackendName(backend) << ": " << r.lastValidationError;
-  return r;
-}
-
 // The seam scene: `cube` at its default 512 texels per face, 256 x 144. The band is one texel on
 // each side of the edges; no seam error means the band is misclassified no more than the shadow
 // edges elsewhere are.
 TEST(SeamBench, CubeOnCubeSeamIsMeasuredInAndOutsideTheSeamBandAlikeOnBothBackends) {
   scene::Scene s = scene::MakeBuiltinScene("cube-seam");
-  bench::RunResult r[2] = {RunOn(s, Backend::Vulkan, 256, 144), RunOn(s, Backend::OpenGL, 256, 144)};
+  std::array<bench::RunResult, 2> r = BenchOnBothBackends(s, "cube", {}, 256, 144);
+  ExpectSameAccuracyOnMesa(r, "cube-seam");
   EXPECT_FLOAT_EQ(r[0].seamBand, 2.0f / 512.0f);
   EXPECT_EQ(r[0].seam.band.receiving + r[0].seam.elsewhere.receiving, r[0].accuracy.receiving);
   EXPECT_GT(r[0].seam.band.receiving, 150u) << "the camera must see the floor along the seams";
@@ -190,9 +177,8 @@ TEST(SeamBench, CubeOnCubeSeamIsMeasuredInAndOutsideTheSeamBandAlikeOnBothBacken
 // technique's own picture except on shadow edges; the directional-only picture does not.
 TEST(ReferencePicture, JudgedPointLightPictureMatchesTheTechniquesPicture) {
   CubeRoom room = MakeCubeRoom();
-  for (Backend b : {Backend::Vulkan, Backend::OpenGL}) {
-    SCOPED_TRACE(BackendName(b));
-    bench::RunResult r = RunOn(room.scene, b, 160, 90);
+  for (const bench::RunResult& r : BenchOnBothBackends(room.scene, "cube", {}, 160, 90)) {
+    SCOPED_TRACE(r.backend);
     const tech::LabBuffers& f = r.firstFrame;
     ASSERT_EQ(r.judgedLocalLight, 0);
     auto differing = [&](const std::vector<uint8_t>& pic) {
@@ -207,7 +193,7 @@ TEST(ReferencePicture, JudgedPointLightPictureMatchesTheTechniquesPicture) {
     double local = differing(eval::ReferenceImage(f, r.firstReference.data(), r.light, tech::LocalLightsOf(room.scene), 0));
     double directional = differing(eval::ReferenceImage(f, r.firstReference.data(), r.light));
     std::printf("%s: reference picture differs from the technique's in %.2f %% of pixels (directional-only picture: %.2f %%)\n",
-                BackendName(b), local, directional);
+                r.backend.c_str(), local, directional);
     EXPECT_LT(local, 1.5);
     EXPECT_GT(directional, 50.0);
     EXPECT_EQ(bench::ReferenceImageName(0), "reference-light0.png");
