@@ -78,6 +78,9 @@ const Entry kScenes[] = {
     {"cube-seam", proc::MakeCubeSeam},
     {"paraboloid-coarse", proc::MakeParaboloidCoarse},
     {"paraboloid-fine", proc::MakeParaboloidFine},
+    {"furnished-room", proc::MakeFurnishedRoom},
+    {"street", proc::MakeStreet},
+    {"lattice", proc::MakeLattice},
 };
 
 }  // namespace

@@ -260,9 +260,11 @@ SearchResult Search(const SearchOptions& o, const std::function<void(const std::
       std::vector<uint8_t> dens = eval::TexelDensityHeatMap(f, &h);
       eval::WritePng(cache.dir() / (stem + "-density.png"), f.width, h, dens.data());
       images["texel_density"] = stem + "-density.png";
-      std::string refImage = "images/reference-" + Slug(sc.name) + "-" + std::to_string(o.width) + "x" + std::to_string(o.height) + ".png";
+      std::string refImage = "images/reference-" + Slug(sc.name) + "-" + std::to_string(o.width) + "x" + std::to_string(o.height) +
+                             (r.judgedLocalLight < 0 ? "" : "-light" + std::to_string(r.judgedLocalLight)) + ".png";
       if (!fs::exists(cache.dir() / refImage))
-        eval::WritePng(cache.dir() / refImage, f.width, f.height, eval::ReferenceImage(f, r.firstReference.data(), r.light).data());
+        eval::WritePng(cache.dir() / refImage, f.width, f.height,
+                       eval::ReferenceImage(f, r.firstReference.data(), r.light, tech::LocalLightsOf(sc), r.judgedLocalLight).data());
       images["reference"] = refImage;
     }
     nlohmann::json rec = bench::RunToJson(r, images);

@@ -121,6 +121,7 @@ RunResult RunOne(const RunSpec& spec, eval::ReferenceCache& reference, const Pro
   // --- 2. Measurement: the lab's lit pass, read back and judged.
   // The directional light, or the local light a local-light technique is judged on.
   eval::ReferenceLight light = eval::ReferenceLight::FromScene(scene.light);
+  bool judgePointLight = false;
   if (int k = tech.LabLocalLight(scene); k >= 0) {
     std::vector<tech::LocalLight> local = tech::LocalLightsOf(scene);
     if (size_t(k) >= local.size())
@@ -128,12 +129,14 @@ RunResult RunOne(const RunSpec& spec, eval::ReferenceCache& reference, const Pro
                                   std::to_string(local.size()));
     const tech::LocalLight& l = local[k];
     r.judgedLocalLight = k;
+    judgePointLight = l.type == tech::LocalLight::Point;
     light = l.type == tech::LocalLight::Spot ? eval::ReferenceLight::MakeSpot(l.position, l.direction, l.cosOuter) : eval::ReferenceLight::MakePoint(l.position);
   }
   // The cache's tracer uses the default options (bench.cpp), so its resolution is known without
   // building a tracer when every frame comes from the cache.
   r.referenceEpsilon = eval::ReferenceOptions{}.relativeEpsilon * eval::ReferenceSceneScale(scene);
   eval::LogHistogram density;
+  std::array<eval::LogHistogram, 6> densityByFace;
   double utilizationSum = 0;
   tech::LabBuffers prev;
   std::vector<float> prevReference;
@@ -163,6 +166,21 @@ RunResult RunOne(const RunSpec& spec, eval::ReferenceCache& reference, const Pro
 
     eval::Accuracy a = eval::MeasureAccuracy(now, ref.data());
     r.accuracy.add(a);
+    if (judgePointLight) {
+      // Two texels of the faces this frame rendered (their resolution may follow the light's
+      // size on screen); a technique whose layers are not six equal square faces (not a cube map)
+      // is measured with the band of `cube`'s default 512.
+      std::vector<tech::ShadowLayer> layers = tech.Layers();
+      bool cubeFaces = layers.size() == 6 && std::all_of(layers.begin(), layers.end(), [&](const tech::ShadowLayer& f) {
+        return f.width == layers[0].width && f.height == layers[0].width && f.width > 2;
+      });
+      float band = eval::SeamBandFor(cubeFaces ? layers[0].width : 512u);
+      if (i == 0) r.seamBand = band;
+      eval::SeamAccuracy seam = eval::MeasureSeamAccuracy(now, ref.data(), light.position, band);
+      r.seam.band.add(seam.band);
+      r.seam.elsewhere.add(seam.elsewhere);
+      eval::AddTexelDensityByFace(now, light.position, densityByFace);
+    }
     r.misclassifiedSeries.push_back(a.misclassifiedPct());
     eval::AddTexelDensity(now, density);
     eval::LogHistogram frameDensity;
@@ -200,6 +218,7 @@ RunResult RunOne(const RunSpec& spec, eval::ReferenceCache& reference, const Pro
   r.texelsPerPixelMedian = density.percentile(0.5);
   r.texelsPerPixelP05 = density.percentile(0.05);
   r.densitySamples = density.count();
+  for (int f = 0; f < 6; ++f) r.texelsPerPixelMedianByFace[f] = densityByFace[f].percentile(0.5);
   r.utilization = spec.frames ? utilizationSum / spec.frames : 0.0;
   ctx.ClearState();
   ctx.WaitIdle();

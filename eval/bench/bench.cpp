@@ -57,6 +57,14 @@ std::string Slug(const std::string& text) {
   return s;
 }
 
+}  // namespace
+
+std::string ReferenceImageName(int judgedLocalLight) {
+  return judgedLocalLight < 0 ? "reference.png" : "reference-light" + std::to_string(judgedLocalLight) + ".png";
+}
+
+namespace {
+
 double Round(double v, double scale) { return std::round(v * scale) / scale; }
 
 // The parameters of one run: the technique spec's, then the sweep's.
@@ -181,6 +189,18 @@ nlohmann::json RunToJson(const RunResult& r, const std::map<std::string, std::st
   };
   // Local-light techniques are judged on one local light (index into the scene's point lights, then spot lights).
   if (r.judgedLocalLight >= 0) run["checks"]["judged_local_light"] = r.judgedLocalLight;
+  // A judged point light: misclassification within the band around its cube-face edges and away
+  // from it (docs/local-lights.md, "Seam metric").
+  if (r.seamBand > 0) {
+    run["metrics"]["seam_misclassified_pct"] = Round(r.seam.band.misclassifiedPct(), 1e4);
+    run["metrics"]["off_seam_misclassified_pct"] = Round(r.seam.elsewhere.misclassifiedPct(), 1e4);
+    run["checks"]["seam_band"] = r.seamBand;
+    run["checks"]["seam_pixels"] = r.seam.band.receiving;
+    run["checks"]["off_seam_pixels"] = r.seam.elsewhere.receiving;
+    nlohmann::json byFace = nlohmann::json::object();
+    for (int f = 0; f < 6; ++f) byFace[eval::kCubeFaceNames[f]] = r.texelsPerPixelMedianByFace[f];
+    run["metrics"]["texels_per_pixel_median_by_face"] = byFace;
+  }
   if (!r.lastValidationError.empty()) run["checks"]["last_validation_error"] = r.lastValidationError;
   if (!images.empty()) run["images"] = images;
   return run;
@@ -237,7 +257,7 @@ nlohmann::json RunBench(const BenchOptions& o, const Progress& progress) {
     if (progress) progress("scene " + std::to_string(si + 1) + "/" + std::to_string(scenes.size()) + ": " + sc.name);
     const scene::CameraPath& path = sc.cameraPath(o.path);
     eval::ReferenceCache cache(sc, ReferenceCacheDir(o));
-    std::string referenceImage;
+    std::map<int, std::string> referenceImages;
     for (size_t ti = 0; ti < o.techniques.size(); ++ti)
       for (const auto& set : sets) {
         const TechniqueSpec t = ParseTechniqueSpec(o.techniques[ti]);
@@ -278,9 +298,12 @@ nlohmann::json RunBench(const BenchOptions& o, const Progress& progress) {
           write("error", imageDir + "/" + stem + "-error.png", h, err);
           std::vector<uint8_t> dens = eval::TexelDensityHeatMap(f, &h);
           write("texel_density", imageDir + "/" + stem + "-density.png", h, dens);
+          // One reference picture per scene and judged light: a local light's is shaded with it.
+          std::string& referenceImage = referenceImages[r.judgedLocalLight];
           if (referenceImage.empty()) {
-            referenceImage = imageDir + "/" + Slug(sc.name) + "/reference.png";
-            eval::WritePng(dir / referenceImage, f.width, f.height, eval::ReferenceImage(f, r.firstReference.data(), r.light).data());
+            referenceImage = imageDir + "/" + Slug(sc.name) + "/" + ReferenceImageName(r.judgedLocalLight);
+            eval::WritePng(dir / referenceImage, f.width, f.height,
+                           eval::ReferenceImage(f, r.firstReference.data(), r.light, tech::LocalLightsOf(sc), r.judgedLocalLight).data());
           }
           images["reference"] = referenceImage;
           nlohmann::json crossBackend;
@@ -309,6 +332,9 @@ nlohmann::json RunBench(const BenchOptions& o, const Progress& progress) {
               << ": misclassified " << r.accuracy.misclassifiedPct() << " %, texels/px median " << r.texelsPerPixelMedian
               << ", GPU total " << std::setprecision(1) << r.gpuMs["total"] << " ms, flicker " << std::defaultfloat << std::setprecision(2)
               << r.flicker.mean();
+            if (r.seamBand > 0)
+              s << std::setprecision(3) << "; seam band " << r.seam.band.misclassifiedPct() << " % of " << r.seam.band.receiving
+                << " px, elsewhere " << r.seam.elsewhere.misclassifiedPct() << " % of " << r.seam.elsewhere.receiving << " px";
             if (!crossBackend.is_null())
               s << "; first frame against " << firstBackend << ": " << crossBackend["differing_pixels"].get<uint64_t>()
                 << " pixels differ (max " << crossBackend["max_difference"].get<int>() << ")";

@@ -14,6 +14,7 @@
 // The two phases are separate so the lab's extra render targets and read-backs never inflate the
 // timings.
 #pragma once
+#include <array>
 #include <filesystem>
 #include <functional>
 #include <map>
@@ -72,6 +73,14 @@ struct RunResult {
   std::vector<uint8_t> firstReference;
   scene::DirectionalLight light;
   int judgedLocalLight = -1;                // Technique::LabLocalLight: -1 the directional light
+  // Where a point light is judged: accuracy inside the band around its cube-face edges and
+  // elsewhere (eval::MeasureSeamAccuracy), over all frames; seamBand (the first frame's) 0 when
+  // not measured.
+  eval::SeamAccuracy seam;
+  float seamBand = 0;
+  // Texels per pixel per cube face of the pixels' directions from that point light (median over
+  // all frames, 0 for a face no judged pixel read; eval::kCubeFaceNames order).
+  std::array<double, 6> texelsPerPixelMedianByFace{};
 
   uint64_t validationErrors = 0, disjointFrames = 0;
   bool validationEnabled = false;           // the layers / debug output were really on
@@ -127,6 +136,10 @@ std::filesystem::path ReferenceCacheDir(const BenchOptions& options);
 // the first carries `cross_backend` (its first frame's colour against the first backend's: pixels,
 // differing_pixels, max_difference) and a `backend_diff` image.
 nlohmann::json RunBench(const BenchOptions& options, const Progress& progress);
+
+// The file name of a scene's reference picture: "reference.png" for the directional light,
+// "reference-light<k>.png" for judged local light k (shaded with that light, eval::ReferenceImage).
+std::string ReferenceImageName(int judgedLocalLight);
 
 // One run as a results record; `images` maps kind -> path relative to the results file.
 nlohmann::json RunToJson(const RunResult& r, const std::map<std::string, std::string>& images);

@@ -190,19 +190,57 @@ std::vector<uint8_t> TexelDensityHeatMap(const tech::LabBuffers& lab, uint32_t* 
   });
 }
 
-std::vector<uint8_t> ReferenceImage(const tech::LabBuffers& lab, const uint8_t* reference, const scene::DirectionalLight& light) {
+namespace {
+
+// What common/local-lights.hlsli adds for one local light at a surface point, before albedo:
+// color * N.L * saturate(1 - (d / range)^4) / d^2 * spot cone factor.
+glm::dvec3 LocalLightAt(const tech::LocalLight& l, const glm::vec3& p, const glm::vec3& n) {
+  glm::dvec3 v = glm::dvec3(l.position) - glm::dvec3(p);
+  double d = glm::length(v);
+  if (!(d > 0.0)) return glm::dvec3(0.0);
+  glm::dvec3 toLight = v / d;
+  double q = d / double(l.range), q2 = q * q;
+  double falloff = std::clamp(1.0 - q2 * q2, 0.0, 1.0) / std::max(d * d, 1e-8);
+  double spot = 1.0;
+  if (l.type == tech::LocalLight::Spot) {
+    double t = std::clamp((glm::dot(glm::dvec3(l.direction), -toLight) - double(l.cosOuter)) / std::max(1e-3, double(l.cosInner - l.cosOuter)), 0.0, 1.0);
+    spot = t * t;
+  }
+  double ndotl = std::max(0.0, glm::dot(glm::dvec3(n), toLight));
+  return glm::dvec3(l.color) * (ndotl * falloff * spot);
+}
+
+}  // namespace
+
+std::vector<uint8_t> ReferenceImage(const tech::LabBuffers& lab, const uint8_t* reference, const scene::DirectionalLight& light,
+                                    const std::vector<tech::LocalLight>& localLights, int judgedLocalLight) {
+  if (judgedLocalLight >= int(localLights.size()))
+    throw std::invalid_argument("reference image: judged local light " + std::to_string(judgedLocalLight) + " but " +
+                                std::to_string(localLights.size()) + " local lights given");
   std::vector<uint8_t> out(lab.size() * 4, 255);
   const double sky[3] = {0.55, 0.68, 0.85};  // the lit pass's clear colour
+  const glm::dvec3 toSun(light.towardsLight());
   for (size_t i = 0; i < lab.size(); ++i) {
-    for (int k = 0; k < 3; ++k) {
-      double v = sky[k];
-      if (lab.drawn(i)) {
+    glm::dvec3 v(sky[0], sky[1], sky[2]);
+    if (lab.drawn(i)) {
+      double vis = lab.receiving(i) && reference[i] ? 1.0 : 0.0;
+      glm::dvec3 albedo(lab.albedo[i * 4] / 255.0, lab.albedo[i * 4 + 1] / 255.0, lab.albedo[i * 4 + 2] / 255.0);
+      glm::dvec3 lit(light.ambient);
+      if (judgedLocalLight < 0) {
         // As lit.hlsl: albedo * (ambient + lightColor * N.L * visibility), here with the reference's.
-        double vis = lab.receiving(i) && reference[i] ? 1.0 : 0.0;
-        v = lab.albedo[i * 4 + k] / 255.0 * (light.ambient + light.color[k] * lab.normal[i].w * vis);
+        lit += glm::dvec3(light.color) * (lab.normal[i].w * vis);
+      } else {
+        // As lit.hlsl draws a local-light technique's frame: the judged light with the reference's
+        // visibility; the directional light and the other local lights unshadowed, as a technique
+        // that shadows one local light leaves them (LocalShadowVisibility and ShadowVisibility 1).
+        glm::vec3 p(lab.position[i]), n(lab.normal[i]);
+        lit += glm::dvec3(light.color) * std::max(0.0, glm::dot(glm::dvec3(n), toSun));
+        for (size_t k = 0; k < localLights.size(); ++k)
+          lit += LocalLightAt(localLights[k], p, n) * (int(k) == judgedLocalLight ? vis : 1.0);
       }
-      out[i * 4 + k] = LinearToSrgb(v);
+      v = albedo * lit;
     }
+    for (int k = 0; k < 3; ++k) out[i * 4 + k] = LinearToSrgb(v[k]);
   }
   return out;
 }

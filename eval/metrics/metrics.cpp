@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <stdexcept>
+#include <string>
 
 namespace sp::eval {
 
@@ -13,18 +15,40 @@ void Accuracy::add(const Accuracy& o) {
   absErrorSum += o.absErrorSum;
 }
 
+namespace {
+
+void Judge(Accuracy& a, float v, bool refLit) {
+  bool lit = v >= kLitThreshold;
+  ++a.receiving;
+  if (lit && !refLit) ++a.falseLit;
+  if (!lit && refLit) ++a.falseShadow;
+  a.absErrorSum += std::abs(double(v) - (refLit ? 1.0 : 0.0));
+}
+
+}  // namespace
+
 Accuracy MeasureAccuracy(const tech::LabBuffers& lab, const uint8_t* reference) {
   Accuracy a;
-  for (size_t i = 0; i < lab.size(); ++i) {
-    if (!lab.receiving(i)) continue;
-    float v = lab.visibility[i];
-    bool lit = v >= kLitThreshold, refLit = reference[i] != 0;
-    ++a.receiving;
-    if (lit && !refLit) ++a.falseLit;
-    if (!lit && refLit) ++a.falseShadow;
-    a.absErrorSum += std::abs(double(v) - (refLit ? 1.0 : 0.0));
-  }
+  for (size_t i = 0; i < lab.size(); ++i)
+    if (lab.receiving(i)) Judge(a, lab.visibility[i], reference[i] != 0);
   return a;
+}
+
+float CubeEdgeGap(const glm::vec3& d) {
+  glm::vec3 a = glm::abs(d);
+  float ma = std::max({a.x, a.y, a.z});
+  // The second largest: the largest of the pairwise minima.
+  float second = std::max({std::min(a.x, a.y), std::min(a.y, a.z), std::min(a.x, a.z)});
+  return ma > 0.0f ? (ma - second) / ma : 0.0f;
+}
+
+SeamAccuracy MeasureSeamAccuracy(const tech::LabBuffers& lab, const uint8_t* reference, const glm::vec3& light, float band) {
+  if (!(band > 0.0f && band < 1.0f)) throw std::invalid_argument("seam band " + std::to_string(band) + " is outside (0, 1)");
+  SeamAccuracy s;
+  for (size_t i = 0; i < lab.size(); ++i)
+    if (lab.receiving(i))
+      Judge(CubeEdgeGap(glm::vec3(lab.position[i]) - light) < band ? s.band : s.elsewhere, lab.visibility[i], reference[i] != 0);
+  return s;
 }
 
 // --- LogHistogram
@@ -68,6 +92,18 @@ double LogHistogram::percentile(double p) const {
 void AddTexelDensity(const tech::LabBuffers& lab, LogHistogram& h) {
   for (size_t i = 0; i < lab.size(); ++i)
     if (lab.receiving(i) && lab.lookup[i].x >= 0.0f) h.add(lab.lookup[i].w);
+}
+
+int CubeFace(const glm::vec3& d) {
+  glm::vec3 a = glm::abs(d);
+  if (a.z >= a.x && a.z >= a.y) return d.z >= 0 ? 4 : 5;
+  if (a.y >= a.x) return d.y >= 0 ? 2 : 3;
+  return d.x >= 0 ? 0 : 1;
+}
+
+void AddTexelDensityByFace(const tech::LabBuffers& lab, const glm::vec3& light, std::array<LogHistogram, 6>& h) {
+  for (size_t i = 0; i < lab.size(); ++i)
+    if (lab.receiving(i) && lab.lookup[i].x >= 0.0f) h[size_t(CubeFace(glm::vec3(lab.position[i]) - light))].add(lab.lookup[i].w);
 }
 
 // --- Utilization

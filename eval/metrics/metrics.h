@@ -35,6 +35,30 @@ struct Accuracy {
 
 Accuracy MeasureAccuracy(const tech::LabBuffers& lab, const uint8_t* reference);
 
+// --- Seams: accuracy near the edges between the faces of a point light's shadow cube
+
+// How far direction d (from the light) is from the nearest cube-face edge: (ma - second) / ma of
+// the two largest of |x|, |y|, |z|. On face f this is 1 - |s| for the face coordinate s = sc / ma
+// (or tc / ma) that reaches the edge, so it is the distance from the edge in face coordinates
+// (a face spans [-1, 1]): 0 on an edge, 1 on the face's axis. D3D11's faces (+X, -X, +Y, -Y, +Z,
+// -Z in world space) meet where two of |x|, |y|, |z| are equal, whatever the face's (s, t) axes.
+float CubeEdgeGap(const glm::vec3& d);
+
+// The seam band's half width in texels on each side of an edge: the 2x2 filter of a seamless
+// cube lookup reads one texel across the edge, so an error of the seam itself sits within one
+// texel of it. The band is kSeamBandTexels * 2 / faceTexels in CubeEdgeGap units.
+constexpr float kSeamBandTexels = 1.0f;
+inline float SeamBandFor(uint32_t faceTexels) { return 2.0f * kSeamBandTexels / float(faceTexels); }
+
+struct SeamAccuracy {
+  Accuracy band;       // judged pixels whose direction from the light has CubeEdgeGap < band
+  Accuracy elsewhere;  // the other judged pixels
+};
+
+// MeasureAccuracy split by the seam band around the cube-face edges of a point light at `light`.
+// `band` must be in (0, 1).
+SeamAccuracy MeasureSeamAccuracy(const tech::LabBuffers& lab, const uint8_t* reference, const glm::vec3& light, float band);
+
 // --- Perspective aliasing: texels per pixel (LabBuffers::lookup.w)
 
 // Percentiles of positive values over many frames in fixed memory: 512 logarithmic bins per
@@ -59,6 +83,13 @@ class LogHistogram {
 
 // Adds the texels per pixel of receiving pixels whose lookup read a map (layer >= 0).
 void AddTexelDensity(const tech::LabBuffers& lab, LogHistogram& histogram);
+
+// D3D11's cube face of a direction: 0..5 for +X, -X, +Y, -Y, +Z, -Z (ties to z, then y), as
+// techniques/cube/cube-faces.h selects it.
+int CubeFace(const glm::vec3& d);
+constexpr const char* kCubeFaceNames[6] = {"+X", "-X", "+Y", "-Y", "+Z", "-Z"};
+// AddTexelDensity per cube face of the pixels' directions from a point light at `light`.
+void AddTexelDensityByFace(const tech::LabBuffers& lab, const glm::vec3& light, std::array<LogHistogram, 6>& histograms);
 
 // --- Utilization: fraction of all layers' texels that some receiving pixel's lookup is centred in.
 double MeasureUtilization(const tech::LabBuffers& lab, const std::vector<tech::ShadowLayer>& layers);
@@ -99,8 +130,12 @@ std::vector<uint8_t> ErrorHeatMap(const tech::LabBuffers& lab, const uint8_t* re
 // Texels per pixel in octave bands from <= 1/32 (dark red, undersampled) through 1 (white) to
 // >= 32 (dark blue, oversampled).
 std::vector<uint8_t> TexelDensityHeatMap(const tech::LabBuffers& lab, uint32_t* imageHeight);
-// The frame shaded as the lit pass shades it, with the reference's visibility (no legend).
-std::vector<uint8_t> ReferenceImage(const tech::LabBuffers& lab, const uint8_t* reference, const scene::DirectionalLight& light);
+// The frame shaded as the lit pass shades it, with the reference's visibility (no legend): with
+// `judgedLocalLight` -1, ambient plus the directional light; otherwise ambient plus every light of
+// `localLights` (tech::LocalLightsOf), the judged one with the reference's visibility, and the
+// directional light unshadowed, as the lit pass draws a local-light technique's frame.
+std::vector<uint8_t> ReferenceImage(const tech::LabBuffers& lab, const uint8_t* reference, const scene::DirectionalLight& light,
+                                    const std::vector<tech::LocalLight>& localLights = {}, int judgedLocalLight = -1);
 // The band colours of TexelDensityHeatMap, index 0 (<= 1/32) to 10 (>= 32).
 std::array<uint8_t, 3> TexelDensityColor(float texelsPerPixel);
 

@@ -37,6 +37,12 @@ METRICS = [
     Metric("false_shadow_pct", "false shadow", "%", "{:.2f}",
            "% of lit-receiving pixels in shadow although the reference is lit: shadow acne, "
            "over-darkening"),
+    Metric("seam_misclassified_pct", "seam band misclassified", "%", "{:.2f}",
+           "misclassified % of the judged pixels within one face texel of an edge between two "
+           "faces of the judged point light's shadow cube (docs/local-lights.md, Seam metric)"),
+    Metric("off_seam_misclassified_pct", "off-seam misclassified", "%", "{:.2f}",
+           "misclassified % of the judged pixels away from the cube-face edges; a seam band "
+           "figure above it points at errors of the seams themselves"),
     Metric("mean_abs_error", "mean |error|", "", "{:.4f}",
            "mean absolute difference of the shadow term (0 = shadow, 1 = lit) from the reference"),
     Metric("texels_per_pixel_median", "texels/px median", "", "{:.3g}",

@@ -24,11 +24,6 @@ CameraPath OrbitPath(const std::string& name, const Camera& camera, float degree
   return MakePath(name, camera, std::move(keys));
 }
 
-uint64_t Remainder(const Scene& s, uint64_t budget) {
-  uint64_t used = s.triangleCount();
-  return budget > used + 2 ? budget - used : 2;
-}
-
 }  // namespace
 
 Scene MakeContact(uint64_t budget) {
@@ -131,29 +126,16 @@ Scene MakePointLightRoom(uint64_t budget) {
   // and is dim (and blocked by the ceiling anyway).
   const glm::vec3 lo(-6.0f, 0.0f, -4.5f), hi(6.0f, 3.6f, 4.5f);
   const float t = 0.25f;
-  int n = LevelForBudget(1, 512, budget / 4, [](int c) { return uint64_t(5) * 12 * c * c; });
-  uint32_t slab = s.addMesh(MakeGridBox(n, "wall"));
   const glm::vec3 plaster(0.80f, 0.78f, 0.74f);
   glm::vec3 size = hi - lo, mid = (hi + lo) * 0.5f;
-  s.addInstance(slab, Place({lo.x - t * 0.5f, mid.y, mid.z}, {t, size.y, size.z + 2 * t}), plaster);
-  s.addInstance(slab, Place({hi.x + t * 0.5f, mid.y, mid.z}, {t, size.y, size.z + 2 * t}), plaster);
-  s.addInstance(slab, Place({mid.x, mid.y, lo.z - t * 0.5f}, {size.x, size.y, t}), plaster);
-  s.addInstance(slab, Place({mid.x, mid.y, hi.z + t * 0.5f}, {size.x, size.y, t}), plaster);
-  s.addInstance(slab, Place({mid.x, hi.y + t * 0.5f, mid.z}, {size.x + 2 * t, t, size.z + 2 * t}), plaster * 0.95f);
+  AddRoomShell(s, lo, hi, t, plaster, budget / 4);
 
   // Furniture: legs, shelves and table tops throw the many small, overlapping omni shadows.
   const int boxesInFurniture = 10 + 7 + 4 + 8 * 11;  // two tables, a shelf, a cabinet and crates, eight chairs
   int k = LevelForBudget(1, 128, budget * 35 / 100, [&](int c) { return uint64_t(boxesInFurniture) * 12 * c * c; });
   uint32_t table = s.addMesh(MakeTable(k, {1.6f, 0.9f}));
   uint32_t chair = s.addMesh(MakeChair(k));
-  Mesh shelfMesh;
-  shelfMesh.name = "shelf";
-  Mesh part = MakeGridBox(k);
-  auto addPart = [&](glm::vec3 c, glm::vec3 sz) { AppendMesh(shelfMesh, part, glm::scale(glm::translate(glm::mat4(1.0f), c), sz)); };
-  addPart({-0.98f, 1.1f, 0.0f}, {0.04f, 2.2f, 0.4f});
-  addPart({0.98f, 1.1f, 0.0f}, {0.04f, 2.2f, 0.4f});
-  for (int i = 0; i < 5; ++i) addPart({0.0f, 0.05f + 0.52f * i, 0.0f}, {1.92f, 0.03f, 0.38f});
-  uint32_t shelf = s.addMesh(std::move(shelfMesh));
+  uint32_t shelf = s.addMesh(MakeShelf(k));
   uint32_t box = s.addMesh(MakeGridBox(k, "box"));
 
   const glm::vec3 wood(0.60f, 0.44f, 0.30f), dark(0.35f, 0.30f, 0.28f);

@@ -88,13 +88,35 @@ void AppendMesh(Mesh& dst, const Mesh& src, const glm::mat4& m) {
   }
 }
 
-namespace {
-
 void AddBoxPart(Mesh& dst, const Mesh& box, glm::vec3 center, glm::vec3 size) {
   AppendMesh(dst, box, glm::scale(glm::translate(glm::mat4(1.0f), center), size));
 }
 
-}  // namespace
+void AddRoomShell(Scene& s, const glm::vec3& lo, const glm::vec3& hi, float t, const glm::vec3& albedo, uint64_t triangles) {
+  int n = LevelForBudget(1, 512, triangles, [](int c) { return uint64_t(5) * 12 * c * c; });
+  uint32_t slab = s.addMesh(MakeGridBox(n, "wall"));
+  glm::vec3 size = hi - lo, mid = (hi + lo) * 0.5f;
+  s.addInstance(slab, Place({lo.x - t * 0.5f, mid.y, mid.z}, {t, size.y, size.z + 2 * t}), albedo);
+  s.addInstance(slab, Place({hi.x + t * 0.5f, mid.y, mid.z}, {t, size.y, size.z + 2 * t}), albedo);
+  s.addInstance(slab, Place({mid.x, mid.y, lo.z - t * 0.5f}, {size.x, size.y, t}), albedo);
+  s.addInstance(slab, Place({mid.x, mid.y, hi.z + t * 0.5f}, {size.x, size.y, t}), albedo);
+  s.addInstance(slab, Place({mid.x, hi.y + t * 0.5f, mid.z}, {size.x + 2 * t, t, size.z + 2 * t}), albedo * 0.95f);
+}
+
+uint64_t Remainder(const Scene& s, uint64_t budget) {
+  uint64_t used = s.triangleCount();
+  return budget > used + 2 ? budget - used : 2;
+}
+
+Mesh MakeShelf(int cells) {
+  Mesh part = MakeGridBox(cells);
+  Mesh m;
+  m.name = "shelf";
+  AddBoxPart(m, part, {-0.98f, 1.1f, 0.0f}, {0.04f, 2.2f, 0.4f});
+  AddBoxPart(m, part, {0.98f, 1.1f, 0.0f}, {0.04f, 2.2f, 0.4f});
+  for (int i = 0; i < 5; ++i) AddBoxPart(m, part, {0.0f, 0.05f + 0.52f * i, 0.0f}, {1.92f, 0.03f, 0.38f});
+  return m;
+}
 
 Mesh MakeChair(int cells) {
   Mesh box = MakeGridBox(cells);

@@ -45,6 +45,15 @@ void AppendMesh(Mesh& dst, const Mesh& src, const glm::mat4& m);
 Mesh MakeChair(int cells);
 // A table with a thin top at 0.75 m and four legs, standing on y = 0.
 Mesh MakeTable(int cells, glm::vec2 top);
+// A 2 x 2.2 x 0.4 m open shelf (two sides, five boards) standing on y = 0, centred on x and z.
+Mesh MakeShelf(int cells);
+// Appends `box` (MakeGridBox) scaled to `size` and centred at `center`: furniture from boxes.
+void AddBoxPart(Mesh& dst, const Mesh& box, glm::vec3 center, glm::vec3 size);
+
+// A closed room's four walls and ceiling (slabs `t` thick outside the inside box lo..hi; the walls
+// overlap at the corners so no light leaks there): five instances of one "wall" grid box split
+// finely enough to spend about `triangles`. The floor is the scene's, under the walls.
+void AddRoomShell(Scene& s, const glm::vec3& lo, const glm::vec3& hi, float t, const glm::vec3& albedo, uint64_t triangles);
 
 // A flat receiver at y = center.y facing +y covering size.x by size.y (x, z), as tiles x tiles
 // instances of one subdivided grid, with about `triangles` triangles (at least 2 per tile):
@@ -70,6 +79,9 @@ int LevelForBudget(int lo, int hi, uint64_t budget, const std::function<uint64_t
 // Instance triangles per mesh, for spending budgets.
 inline uint64_t Tris(const Scene& s, uint32_t mesh) { return s.meshes[mesh].triangleCount(); }
 
+// What is left of `budget` after the triangles placed so far (at least 2): the floor's share.
+uint64_t Remainder(const Scene& s, uint64_t budget);
+
 // A path through explicit keys with the scene camera's lens.
 CameraPath MakePath(const std::string& name, const Camera& lens, std::vector<CameraKey> keys);
 // A yaw about the camera position from `fromDegrees` to `toDegrees` (positive turns left), keys
@@ -92,5 +104,8 @@ Scene MakePointLightRoom(uint64_t budget);
 Scene MakeCubeSeam(uint64_t budget);
 Scene MakeParaboloidCoarse(uint64_t budget);
 Scene MakeParaboloidFine(uint64_t budget);
+Scene MakeFurnishedRoom(uint64_t budget);
+Scene MakeStreet(uint64_t budget);
+Scene MakeLattice(uint64_t budget);
 
 }  // namespace sp::scene::proc
