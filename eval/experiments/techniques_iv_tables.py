@@ -51,10 +51,10 @@ def omni_table(rows):
     print("|" + "---|" * len(head))
     for vk, gl, same in sorted(rows, key=lambda r: (r[0]["scene"], variant(r[0]))):
         m = vk["metrics"]
-        seam = m.get("seam_band_misclassified_pct")
+        seam, c = m.get("seam_misclassified_pct"), vk["checks"]
         cells = [vk["scene"], variant(vk), f"{m['misclassified_pct']:.3f}", f"{m['false_lit_pct']:.3f}", f"{m['false_shadow_pct']:.3f}",
-                 f"{seam:.3f} ({m.get('seam_band_pixels', 0)})" if seam is not None else "-",
-                 f"{m['seam_elsewhere_misclassified_pct']:.3f}" if "seam_elsewhere_misclassified_pct" in m else "-",
+                 f"{seam:.3f} ({c.get('seam_pixels', 0)})" if seam is not None else "-",
+                 f"{m['off_seam_misclassified_pct']:.3f}" if "off_seam_misclassified_pct" in m else "-",
                  f"{m['texels_per_pixel_median']:.2f}", f"{m['shadow_memory_bytes'] / 2**20:.1f}", str(m.get("shadow_layers_rendered", "-")),
                  f"{m['shadow_triangles']:,}", "yes" if same else "NO"]
         print("| " + " | ".join(cells) + " |")
