@@ -1,7 +1,9 @@
 // All six cube faces in one pass (SceneDrawer::DrawDepthLayered, cube faces_pass=single) against
 // the six per-face passes: the same depth bits in every face of the cube room, the same images,
-// the same triangle count; and the refusals (no capability, storage=radial). Both backends.
+// the same triangle count; and the refusals (no capability, storage=radial). Both backends, and
+// the single-pass image identical across them.
 #include "backend-test.h"
+#include "cross-backend.h"
 #include "cube-room.h"
 #include "cube/cube-faces.h"
 #include <sp/tech/renderer.h>
@@ -146,6 +148,15 @@ TEST_P(CubeLayeredTest, SinglePassNeedsTheCapabilityAndDepthStorage) {
 }
 
 SP_INSTANTIATE_BACKEND_TESTS(CubeLayeredTest);
+
+TEST(CubeLayeredCrossBackend, SinglePassRoomRendersIdenticallyOnBothBackends) {
+  const uint32_t W = 160, H = 120;
+  CubeRoom room = MakeCubeRoom();
+  CrossBackendFrame f = RenderOnBothBackends("cube", {{"resolution", "256"}, {"faces_pass", "single"}}, room.scene, W, H);
+  size_t differing = CompareImages("cube-room-single", W, H, f.images[0].data(), f.images[1].data(), 0);
+  if (f.mesa) EXPECT_EQ(differing, 0u) << "Vulkan and GL images differ on Mesa; see the heat map in " << TestOutputDir();
+  else EXPECT_LT(differing, size_t(W * H / 200)) << "more than 0.5% of pixels differ across backends";
+}
 
 }  // namespace
 }  // namespace sp::test
