@@ -67,15 +67,6 @@ SceneDrawer::SceneDrawer(Device& device, const scene::GpuScene& gpu) : gpu_(gpu)
   uint32_t n;
   const INPUT_ELEMENT_DESC* el = scene::GpuScene::InputElements(&n);
   depthLayout_ = device.CreateInputLayout(el, n, vs);
-  // Only where it can exist: CreateVertexShader refuses it on a device without the capability.
-  if (device.Info().vsRenderTargetArrayIndex) {
-    ShaderBytecode layered = CompileTechniqueShader("common/depth-layered.hlsl", "vs_5_0", "VSMain");
-    if (layered.reflection.FindInput("POSITION", 0)->location != vs.reflection.FindInput("POSITION", 0)->location)
-      throw std::logic_error("common/depth-layered.hlsl reads POSITION at another location than depth-only.hlsl, whose input layout it uses");
-    layeredVs_ = device.CreateVertexShader(layered);
-    layerViews_ = DynamicConstants(device, sizeof(glm::mat4) * kMaxDepthLayers, "LayerViews constants");
-    layerList_ = DynamicConstants(device, sizeof(uint32_t) * kMaxDepthLayers, "LayerList constants");
-  }
 }
 
 void SceneDrawer::SetFrame(DeviceContext& ctx, const glm::mat4& viewProj, const FrameInputs* lighting) {
@@ -134,11 +125,19 @@ uint64_t SceneDrawer::DrawDepth(DeviceContext& ctx, const glm::mat4& viewProj, c
 
 uint64_t SceneDrawer::DrawDepthLayered(DeviceContext& ctx, const glm::mat4* viewProj, uint32_t layers,
                                        const std::function<bool(uint32_t instance, uint32_t layer)>& keep) {
-  if (!layeredVs_)
-    throw std::invalid_argument(std::string("DrawDepthLayered: the ") + BackendName(ctx.GetDevice()->GetBackend()) +
+  Device& device = *ctx.GetDevice();
+  if (!device.Info().vsRenderTargetArrayIndex)
+    throw std::invalid_argument(std::string("DrawDepthLayered: the ") + BackendName(device.GetBackend()) +
                                 " device lacks DeviceInfo::vsRenderTargetArrayIndex (a vertex shader writing SV_RenderTargetArrayIndex)");
   if (layers == 0 || layers > kMaxDepthLayers)
     throw std::invalid_argument("DrawDepthLayered: layers=" + std::to_string(layers) + " is outside 1.." + std::to_string(kMaxDepthLayers));
+  if (!layeredVs_) {
+    // Made on first use, so passes that never draw layered pay nothing for it.
+    ShaderBytecode layered = CompileTechniqueShader("common/depth-layered.hlsl", "vs_5_0", "VSMain");
+    layeredVs_ = device.CreateVertexShader(layered);
+    layerViews_ = DynamicConstants(device, sizeof(glm::mat4) * kMaxDepthLayers, "LayerViews constants");
+    layerList_ = DynamicConstants(device, sizeof(uint32_t) * kMaxDepthLayers, "LayerList constants");
+  }
   struct {
     glm::mat4 m[kMaxDepthLayers];
   } views{};
@@ -147,6 +146,7 @@ uint64_t SceneDrawer::DrawDepthLayered(DeviceContext& ctx, const glm::mat4* view
   // Frame still reaches the shader (frame.hlsli declares it); its viewProj is unused here.
   SetFrame(ctx, viewProj[0], nullptr);
   gpu_.BindGeometry(ctx);
+  // depth-layered.hlsl reads what depth-only.hlsl reads (the draw checks the layout fits).
   ctx.IASetInputLayout(depthLayout_.get());
   ctx.VSSetShader(layeredVs_.get());
   ctx.PSSetShader(nullptr);

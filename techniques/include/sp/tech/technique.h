@@ -143,7 +143,7 @@ class SceneDrawer {
   Ref<Buffer> frame_, object_;
   Ref<VertexShader> depthVs_;
   Ref<InputLayout> depthLayout_;
-  Ref<VertexShader> layeredVs_;  // null on a device without vsRenderTargetArrayIndex
+  Ref<VertexShader> layeredVs_;  // made by the first DrawDepthLayered
   Ref<Buffer> layerViews_, layerList_;
 };
 
