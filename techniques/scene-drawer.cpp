@@ -1,5 +1,7 @@
 #include <cstdlib>
 #include <cstring>
+#include <stdexcept>
+#include <string>
 
 #include <sp/tech/technique.h>
 
@@ -117,6 +119,53 @@ uint64_t SceneDrawer::DrawDepth(DeviceContext& ctx, const glm::mat4& viewProj, c
     SetObject(ctx, d.instance);
     ctx.DrawIndexed(d.indexCount, d.firstIndex, d.baseVertex);
     triangles += d.indexCount / 3;
+  }
+  return triangles;
+}
+
+uint64_t SceneDrawer::DrawDepthLayered(DeviceContext& ctx, const glm::mat4* viewProj, uint32_t layers,
+                                       const std::function<bool(uint32_t instance, uint32_t layer)>& keep) {
+  Device& device = *ctx.GetDevice();
+  if (!device.Info().vsRenderTargetArrayIndex)
+    throw std::invalid_argument(std::string("DrawDepthLayered: the ") + BackendName(device.GetBackend()) +
+                                " device lacks DeviceInfo::vsRenderTargetArrayIndex (a vertex shader writing SV_RenderTargetArrayIndex)");
+  if (layers == 0 || layers > kMaxDepthLayers)
+    throw std::invalid_argument("DrawDepthLayered: layers=" + std::to_string(layers) + " is outside 1.." + std::to_string(kMaxDepthLayers));
+  if (!layeredVs_) {
+    // Made on first use, so passes that never draw layered pay nothing for it.
+    ShaderBytecode layered = CompileTechniqueShader("common/depth-layered.hlsl", "vs_5_0", "VSMain");
+    layeredVs_ = device.CreateVertexShader(layered);
+    layerViews_ = DynamicConstants(device, sizeof(glm::mat4) * kMaxDepthLayers, "LayerViews constants");
+    layerList_ = DynamicConstants(device, sizeof(uint32_t) * kMaxDepthLayers, "LayerList constants");
+  }
+  struct {
+    glm::mat4 m[kMaxDepthLayers];
+  } views{};
+  for (uint32_t l = 0; l < layers; ++l) views.m[l] = viewProj[l];
+  Upload(ctx, layerViews_.get(), views);
+  // Frame still reaches the shader (frame.hlsli declares it); its viewProj is unused here.
+  SetFrame(ctx, viewProj[0], nullptr);
+  gpu_.BindGeometry(ctx);
+  // depth-layered.hlsl reads what depth-only.hlsl reads (the draw checks the layout fits).
+  ctx.IASetInputLayout(depthLayout_.get());
+  ctx.VSSetShader(layeredVs_.get());
+  ctx.PSSetShader(nullptr);
+  BindConstants(ctx, ShaderStage::Vertex);
+  Buffer* layerCbs[] = {layerViews_.get(), layerList_.get()};
+  ctx.VSSetConstantBuffers(7, 2, layerCbs);
+  uint64_t triangles = 0;
+  for (const scene::DrawItem& d : gpu_.draws()) {
+    struct {
+      uint32_t layer[kMaxDepthLayers];
+    } list{};
+    uint32_t count = 0;
+    for (uint32_t l = 0; l < layers; ++l)
+      if (keep(d.instance, l)) list.layer[count++] = l;
+    if (count == 0) continue;
+    SetObject(ctx, d.instance);
+    Upload(ctx, layerList_.get(), list);
+    ctx.DrawIndexedInstanced(d.indexCount, count, d.firstIndex, d.baseVertex, 0);
+    triangles += uint64_t(count) * (d.indexCount / 3);
   }
   return triangles;
 }

@@ -134,6 +134,8 @@ void GLDevice::Init(const DeviceDesc& desc) {
   polygonOffsetClamp = reinterpret_cast<PFNGLPOLYGONOFFSETCLAMPEXTPROC>(eglGetProcAddress("glPolygonOffsetClampEXT"));
   if (!polygonOffsetClamp) polygonOffsetClamp = reinterpret_cast<PFNGLPOLYGONOFFSETCLAMPEXTPROC>(eglGetProcAddress("glPolygonOffsetClamp"));
   hasFilterMinmax = HasExtension("GL_ARB_texture_filter_minmax") || HasExtension("GL_EXT_texture_filter_minmax");
+  // The GLSL of such a vertex shader requires this extension by name (hlsl/glsl.cpp).
+  info_.vsRenderTargetArrayIndex = !desc.disableVsRenderTargetArrayIndex && HasExtension("GL_ARB_shader_viewport_layer_array");
   glGetIntegerv(GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT, &ssboAlignment);
   glGetIntegerv(GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT, &uboAlignment);
   glGetIntegerv(GL_TEXTURE_BUFFER_OFFSET_ALIGNMENT, &tboAlignment);

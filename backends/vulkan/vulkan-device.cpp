@@ -75,7 +75,7 @@ VulkanDevice::VulkanDevice(Device& core, const DeviceDesc& desc) : DeviceBackend
   try {
     CreateInstance(desc.debug);
     PickPhysicalDevice();
-    CreateLogicalDevice();
+    CreateLogicalDevice(!desc.disableVsRenderTargetArrayIndex);
     FillInfo();
     alloc.Init(this);
     VkPipelineCacheCreateInfo pci{VK_STRUCTURE_TYPE_PIPELINE_CACHE_CREATE_INFO};
@@ -262,7 +262,7 @@ void VulkanDevice::PickPhysicalDevice() {
   vkGetPhysicalDeviceMemoryProperties(physical, &memProps);
 }
 
-void VulkanDevice::CreateLogicalDevice() {
+void VulkanDevice::CreateLogicalDevice(bool allowLayerOutput) {
   const char* call = "CreateDevice";
   uint32_t qn = 0;
   vkGetPhysicalDeviceQueueFamilyProperties(physical, &qn, nullptr);
@@ -346,6 +346,12 @@ void VulkanDevice::CreateLogicalDevice() {
   e12.scalarBlockLayout = f12.scalarBlockLayout;
   e12.uniformBufferStandardLayout = f12.uniformBufferStandardLayout;
   e12.separateDepthStencilLayouts = f12.separateDepthStencilLayouts;
+  // glslang declares a vertex shader's SV_RenderTargetArrayIndex with the EXT capability
+  // (ShaderViewportIndexLayerEXT), which Vulkan ties to the extension; Vulkan 1.2's features
+  // cover ShaderLayer / ShaderViewportIndex. Enable both where offered.
+  const bool layerOutput = allowLayerOutput && f12.shaderOutputLayer && f12.shaderOutputViewportIndex;
+  e12.shaderOutputLayer = layerOutput;
+  e12.shaderOutputViewportIndex = layerOutput;
   VkPhysicalDeviceVulkan13Features e13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
   e13.dynamicRendering = VK_TRUE;
   e13.synchronization2 = VK_TRUE;
@@ -387,6 +393,9 @@ void VulkanDevice::CreateLogicalDevice() {
     feat.divisor = true;
     feat.divisorZero = divisor.vertexAttributeInstanceRateZeroDivisor;
   }
+  if (layerOutput && HasExtension(exts, VK_EXT_SHADER_VIEWPORT_INDEX_LAYER_EXTENSION_NAME))
+    enabled.push_back(VK_EXT_SHADER_VIEWPORT_INDEX_LAYER_EXTENSION_NAME);
+  info_.vsRenderTargetArrayIndex = layerOutput;
   feat.samplerMinmax = e12.samplerFilterMinmax;
   feat.depthClamp = e.depthClamp;
   feat.depthBiasClamp = e.depthBiasClamp;

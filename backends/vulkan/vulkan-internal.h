@@ -418,7 +418,7 @@ class VulkanDevice final : public detail::DeviceBackend {
  private:
   void CreateInstance(bool debug);
   void PickPhysicalDevice();
-  void CreateLogicalDevice();
+  void CreateLogicalDevice(bool allowLayerOutput);
   void FillInfo();
   void Teardown();
 

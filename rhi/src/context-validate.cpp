@@ -240,6 +240,18 @@ void DrawValidator::CheckDraw(DeviceContext& ctx, const DrawArgs& args, const ch
   c.checkStage(ShaderStage::Vertex);
   c.checkStage(ShaderStage::Pixel);
 
+  // D3D11 renders an out-of-range SV_RenderTargetArrayIndex into slice 0; Vulkan leaves a layer
+  // at or past the framebuffer's layer count undefined and GL ignores the index on a single-layer
+  // attachment. Only layered (array) targets keep the three alike, so require them.
+  if (const char* arrayIndex = ArrayIndexOutput(vs->Reflection()); arrayIndex && std::string_view(arrayIndex) == "SV_RenderTargetArrayIndex") {
+    const View* target = s.depthStencil.get();
+    for (uint32_t i = 0; i < s.numRenderTargets && !target; ++i) target = s.renderTargets[i].get();
+    if (target && target->Range().sliceCount < 2)
+      Fail(ErrorId::OUTPUT_MISMATCH, call, Describe(vs),
+           "the vertex shader writes SV_RenderTargetArrayIndex but " + Describe(target) +
+               " has one array slice; bind a layered view (e.g. DSV_DIMENSION_TEXTURE2DARRAY with ArraySize > 1) so every index it writes exists");
+  }
+
   // Render targets written by the pixel shader must match in kind (float/int) when bound.
   if (ps) {
     for (const SignatureElement& o : ps->Reflection().outputs) {

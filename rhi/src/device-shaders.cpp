@@ -15,6 +15,13 @@ Ref<T> Device::CreateShaderOfStage(ShaderStage stage, const ShaderBytecode& byte
   if (bytecode.stage != stage)
     Fail(ErrorId::SHADER_STAGE_MISMATCH, call, obj,
          std::string("the bytecode is a ") + ShaderStageName(bytecode.stage) + " shader, not a " + ShaderStageName(stage) + " shader");
+  const char* arrayIndex = stage == ShaderStage::Vertex ? ArrayIndexOutput(bytecode.reflection) : nullptr;
+  if (arrayIndex && !info_.vsRenderTargetArrayIndex)
+    Fail(ErrorId::NOT_SUPPORTED, call, obj,
+         std::string("the vertex shader writes ") + arrayIndex +
+             ", which needs DeviceInfo::vsRenderTargetArrayIndex (D3D11: VPAndRTArrayIndexFromAnyShaderFeedingRasterizer; Vulkan: "
+             "shaderOutputLayer/VK_EXT_shader_viewport_index_layer; GL: GL_ARB_shader_viewport_layer_array), which this " +
+             BackendName(info_.backend) + " device lacks");
   Ref<T> s(new T(this, bytecode));
   s->backend_ = backend_->CreateShaderBackend(*s);
   return s;

@@ -39,6 +39,16 @@ inline const Buffer* AsBuffer(const Resource* r) {
   return r && r->GetType() == RESOURCE_DIMENSION_BUFFER ? static_cast<const Buffer*>(r) : nullptr;
 }
 
+// The array-index output a vertex shader writes ("SV_RenderTargetArrayIndex" or
+// "SV_ViewportArrayIndex", the first found), or null.
+inline const char* ArrayIndexOutput(const ShaderReflection& r) {
+  for (const SignatureElement& o : r.outputs) {
+    if (o.semanticName == "SV_RENDERTARGETARRAYINDEX") return "SV_RenderTargetArrayIndex";
+    if (o.semanticName == "SV_VIEWPORTARRAYINDEX") return "SV_ViewportArrayIndex";
+  }
+  return nullptr;
+}
+
 std::string BindFlagsToString(uint32_t flags);
 std::string UsageName(USAGE usage);
 // HLSL's name of a resource dimension ("Texture2DArray", "Buffer"; "raw buffer" for BUFFEREX).

@@ -59,6 +59,7 @@ class CubeTechnique final : public Technique {
         {ParamSpec::Choice, "resolution_from", "fixed: every cube at `resolution`; screen: each light's from the screen size of its range sphere, between min_resolution and resolution", "fixed", 0, 0, {"fixed", "screen"}},
         {ParamSpec::Int, "min_resolution", "resolution_from=screen: the smallest face resolution", "64", 16, 8192, {}},
         {ParamSpec::Float, "texels_per_pixel", "resolution_from=screen: face texels per screen pixel across the light's range sphere", "1.0", 0.01, 100, {}},
+        {ParamSpec::Choice, "faces_pass", "per_face: one pass per face; single: one instanced pass into all six faces, the vertex shader choosing the face (storage=depth, needs the device capability vsRenderTargetArrayIndex)", "per_face", 0, 0, {"per_face", "single"}},
     };
   }
 
@@ -104,6 +105,7 @@ class CubeTechnique final : public Technique {
     smp.ComparisonFunc = radial_ ? COMPARISON_NEVER : COMPARISON_LESS_EQUAL;
     sampler_ = device.CreateSamplerState(smp);
     constants_ = MakeConstantBuffer(device, sizeof(Constants), "CubeShadow constants");
+    ConfigureFacesPass(device, p);
   }
 
   void RenderShadows(DeviceContext& ctx, SceneDrawer& drawer, const FrameInputs& frame) override {
@@ -185,7 +187,45 @@ class CubeTechnique final : public Technique {
     std::vector<Ref<DepthStencilView>> faces;  // depth: one per face; radial: the passes' depth buffer
     std::vector<Ref<RenderTargetView>> faceRtvs;
     Ref<ShaderResourceView> srv;
+    Ref<DepthStencilView> allFaces;  // faces_pass=single
   };
+
+  // faces_pass=single: one DSV over a cube's six faces, drawn into with the face chosen per instance.
+  void ConfigureFacesPass(Device& device, const ParamValues& p) {
+    onePass_ = p.getChoice("faces_pass") == "single";
+    if (!onePass_) return;
+    if (radial_) throw std::invalid_argument("cube: faces_pass=single needs storage=depth (storage=radial renders each face with its own colour target)");
+    if (!device.Info().vsRenderTargetArrayIndex)
+      throw std::invalid_argument(std::string("cube: faces_pass=single needs the device capability vsRenderTargetArrayIndex (a vertex shader writing "
+                                              "SV_RenderTargetArrayIndex), which this ") + BackendName(device.GetBackend()) + " device lacks; use faces_pass=per_face");
+  }
+
+  static Ref<DepthStencilView> AllFacesView(Device& device, Texture2D* cube) {
+    DEPTH_STENCIL_VIEW_DESC dv;
+    dv.Format = FORMAT_D32_FLOAT;
+    dv.ViewDimension = DSV_DIMENSION_TEXTURE2DARRAY;
+    dv.Texture2DArray = {0, 0, 6};
+    return device.CreateDepthStencilView(cube, &dv);
+  }
+
+  // RenderSlot's six passes as one: the same face culling (a skipped face gets no instances, but is
+  // cleared with the rest), the same matrices and rasterizer state, so the same depth bits.
+  void RenderSlotInOnePass(DeviceContext& ctx, SceneDrawer& drawer, const FrameInputs& frame, Slot& slot, const LocalLight& l, const glm::mat4& camera,
+                           float widen) {
+    const std::vector<scene::Instance>& instances = frame.scene->instances;
+    glm::mat4 viewProj[6];
+    bool skip[6];
+    for (int f = 0; f < 6; ++f) {
+      viewProj[f] = cube::FaceViewProj(f, l.position, near_, l.range);
+      skip[f] = cullFaces_ && !cube::FaceNeeded(f, l.position, near_, l.range, widen, camera, *frame.scene, visible_);
+      if (!skip[f]) ++facesRendered_;
+    }
+    ctx.OMSetRenderTargets(0, nullptr, slot.allFaces.get());
+    ctx.ClearDepthStencilView(slot.allFaces.get(), CLEAR_DEPTH, 1.0f, 0);
+    trianglesSubmitted_ += drawer.DrawDepthLayered(ctx, viewProj, 6, [&](uint32_t i, uint32_t f) {
+      return !skip[f] && cube::BoxMayMeetFrustum(viewProj[f], instances[i].worldBounds);
+    });
+  }
 
   // The lights shadowed this frame: lights=one, the chosen light; lights=all, the point lights
   // whose range sphere meets a visible receiver's box and the camera frustum, largest on screen
@@ -265,6 +305,7 @@ class CubeTechnique final : public Technique {
       slot.faces.push_back(device.CreateDepthStencilView(slot.radialDepth.get()));
     } else {
       slot.faces = MakeSliceDepthViews(device, slot.cube.get());
+      if (onePass_) slot.allFaces = AllFacesView(device, slot.cube.get());
     }
     SHADER_RESOURCE_VIEW_DESC sd;
     sd.Format = FORMAT_R32_FLOAT;
@@ -279,6 +320,7 @@ class CubeTechnique final : public Technique {
     ctx.RSSetViewports(1, &vp);
     // The lookup reads past a face's edge: the 2x2 filter one texel, a kernel its half width more.
     const float widen = 1.0f + 2.0f * float(2 + (filter_ ? kernel_ / 2 : 0)) / float(slot.resolution);
+    if (slot.allFaces) return RenderSlotInOnePass(ctx, drawer, frame, slot, l, camera, widen);
     for (int f = 0; f < 6; ++f) {
       glm::mat4 viewProj = cube::FaceViewProj(f, l.position, near_, l.range);
       // A skipped face is still cleared (to lit), so no earlier frame's depths remain in it.
@@ -323,7 +365,7 @@ class CubeTechnique final : public Technique {
   Device* device_ = nullptr;
   uint32_t light_ = 0, resolution_ = 0, minResolution_ = 64;
   float near_ = 0.05f, texelsPerPixel_ = 1.0f;
-  bool radial_ = false, allLights_ = false, fromScreen_ = false, cullFaces_ = true;
+  bool radial_ = false, allLights_ = false, fromScreen_ = false, cullFaces_ = true, onePass_ = false;
   int filter_ = 0, kernel_ = 3;
   float radialBias_ = 0, radialSlope_ = 0;
   uint32_t slotCount_ = 1, labSlot_ = kMaxCubeSlots;

@@ -123,6 +123,22 @@ class Std140Rewriter {
   bool rewrite_ = false;
 };
 
+// With the extension, Mesa makes gl_Layer and gl_ViewportIndex members of the vertex stage's
+// gl_PerVertex, and a redeclared gl_PerVertex (SPIRV-Cross writes one for separable programs)
+// hides every member it does not list; SPIRV-Cross lists only the SPIR-V block's members.
+void DeclareLayerOutputsInPerVertex(std::string& glsl) {
+  const std::string block = "out gl_PerVertex\n{\n";
+  size_t at = glsl.find(block);
+  if (at == std::string::npos) return;
+  size_t end = glsl.find('}', at);
+  for (const char* name : {"gl_Layer", "gl_ViewportIndex"}) {
+    std::string member = std::string("    int ") + name + ";\n";
+    if (glsl.find(std::string(name) + " =") == std::string::npos || glsl.substr(at, end - at).find(name) != std::string::npos) continue;
+    glsl.insert(at + block.size(), member);
+    end += member.size();
+  }
+}
+
 }  // namespace
 
 GlStageBases GlBasesForStage(ShaderStage stage) {
@@ -149,6 +165,13 @@ GlslOutput CrossCompileToGlsl(const std::vector<uint32_t>& spirv, const ShaderRe
     // D3D's SV_InstanceID, like GL's gl_InstanceID, does not include StartInstanceLocation.
     o.vertex.support_nonzero_base_instance = false;
     c.set_common_options(o);
+    // SPIRV-Cross writes gl_Layer / gl_ViewportIndex in a vertex shader without the extension
+    // that declares them there in GLSL 4.50, so the GL driver would reject the shader.
+    bool layerOutputs = false;
+    if (refl.stage == ShaderStage::Vertex)
+      for (spv::Capability cap : c.get_declared_capabilities())
+        layerOutputs |= cap == spv::CapabilityShaderViewportIndexLayerEXT || cap == spv::CapabilityShaderLayer || cap == spv::CapabilityShaderViewportIndex;
+    if (layerOutputs) c.require_extension("GL_ARB_shader_viewport_layer_array");
 
     GlStageBases bases = GlBasesForStage(refl.stage);
     spirv_cross::ShaderResources res = c.get_shader_resources();
@@ -250,6 +273,7 @@ GlslOutput CrossCompileToGlsl(const std::vector<uint32_t>& spirv, const ShaderRe
       out.bindings.push_back(std::move(b));
     }
     out.glsl = c.compile();
+    if (layerOutputs) DeclareLayerOutputsInPerVertex(out.glsl);
     if (HasSignedAtomicOnUnsignedWords(spirv)) {
       // GLSL's atomicMin/atomicMax compare with the signedness of the memory, here the uint words
       // of a RWByteAddressBuffer, so D3D11's signed int overloads cannot be expressed. The

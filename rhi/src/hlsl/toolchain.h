@@ -15,7 +15,7 @@ struct SPIRType;
 namespace sp::hlsl {
 
 // Toolchain revision: part of every cache key. Bump it when a stage changes its output.
-inline constexpr const char* kToolchainRevision = "sp-hlsl-19";
+inline constexpr const char* kToolchainRevision = "sp-hlsl-20";
 
 // Reflection from SPIR-V that still carries SPV_GOOGLE_hlsl_functionality1 decorations
 // (semantics, counter buffers). Throws CompileError for bindings outside ShadowPort's scheme.

@@ -46,6 +46,9 @@ struct DeviceDesc {
   // Where the shaders the device compiles for itself (depth-bias calibration) are cached.
   // Empty: the toolchain's default (hlsl::CompileOptions::cacheDir).
   std::filesystem::path shaderCacheDir;
+  // Start the device as if the driver lacked vsRenderTargetArrayIndex (not enabled, reported
+  // false), so the refusals and per-face fallbacks can be exercised on a driver that has it.
+  bool disableVsRenderTargetArrayIndex = false;
 };
 
 // What the device is, and what it measured about the driver when it started.
@@ -62,6 +65,12 @@ struct DeviceInfo {
   bool validationEnabled = false;
   uint64_t timestampFrequency = 0;  // ticks per second
   uint32_t maxMsaaSamples = 1;      // largest of 1, 2, 4, 8 supported for colour and depth
+  // A vertex shader may write SV_RenderTargetArrayIndex and SV_ViewportArrayIndex (D3D11.3's
+  // D3D11_FEATURE_DATA_D3D11_OPTIONS3::VPAndRTArrayIndexFromAnyShaderFeedingRasterizer):
+  // Vulkan 1.2 shaderOutputLayer + shaderOutputViewportIndex (VK_EXT_shader_viewport_index_layer
+  // enabled too when offered), GL_ARB_shader_viewport_layer_array. Without it CreateVertexShader
+  // refuses such a shader.
+  bool vsRenderTargetArrayIndex = false;
 };
 
 enum FORMAT_SUPPORT : uint32_t {

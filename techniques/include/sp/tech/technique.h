@@ -123,6 +123,15 @@ class SceneDrawer {
   };
   uint64_t DrawDepth(DeviceContext& ctx, const glm::mat4& viewProj, const std::function<bool(uint32_t instance)>& keep,
                      const DepthShaders& shaders);
+  // One pass into `layers` layers of a layered depth target (a DSV_DIMENSION_TEXTURE2DARRAY
+  // view of that many slices, bound by the caller with viewport and rasterizer state): layer l is
+  // drawn with viewProj[l], and each draw item is submitted once, instanced once per layer
+  // keep(instance, l) accepts, its vertex shader choosing the layer (SV_RenderTargetArrayIndex).
+  // Writes the same depth as a DrawDepth per layer. Needs DeviceInfo::vsRenderTargetArrayIndex
+  // (throws std::invalid_argument naming it otherwise); layers <= kMaxDepthLayers. Binds VS b7, b8.
+  static constexpr uint32_t kMaxDepthLayers = 8;
+  uint64_t DrawDepthLayered(DeviceContext& ctx, const glm::mat4* viewProj, uint32_t layers,
+                            const std::function<bool(uint32_t instance, uint32_t layer)>& keep);
   // Writes Frame (b0) for a pass and Object (b1) per instance; used by the lit pass too.
   void SetFrame(DeviceContext& ctx, const glm::mat4& viewProj, const FrameInputs* lighting);
   void SetObject(DeviceContext& ctx, uint32_t instance);
@@ -134,6 +143,8 @@ class SceneDrawer {
   Ref<Buffer> frame_, object_;
   Ref<VertexShader> depthVs_;
   Ref<InputLayout> depthLayout_;
+  Ref<VertexShader> layeredVs_;  // made by the first DrawDepthLayered
+  Ref<Buffer> layerViews_, layerList_;
 };
 
 // --- Resources every technique makes the same way (technique-resources.cpp)
