@@ -4,6 +4,8 @@
 // "no" would lose a shadow, so each is a separating-plane test that only says "no" when one plane
 // has all of the other shape's corners outside it.
 #pragma once
+#include <algorithm>
+#include <cmath>
 #include <glm/glm.hpp>
 #include <vector>
 
@@ -77,6 +79,25 @@ inline bool FaceNeeded(int f, const glm::vec3& light, float nearZ, float range, 
   for (uint32_t v : visible)
     if (BoxMayMeetFrustum(face, s.instances[v].worldBounds, widen)) return true;
   return false;
+}
+
+// King's budget: a light's face resolution from its size on screen. The radius in pixels of the
+// light's range sphere (the screen's half height, at most 1e9, when the camera is inside it)...
+inline float ScreenRadius(const glm::vec3& light, float range, const glm::vec3& cameraPosition, const glm::mat4& cameraProj, uint32_t screenHeight) {
+  float d = glm::length(light - cameraPosition);
+  if (d <= range * 1.0001f) return 1e9f;
+  float tanHalf = range / std::sqrt(d * d - range * range);
+  return std::min(1e9f, tanHalf * cameraProj[1][1] * 0.5f * float(screenHeight));
+}
+
+// ...and the face resolution: a face spans the sphere's diameter (2 radius pixels) at its far end,
+// so that many texels give `texelsPerPixel` there (more nearer the light), rounded up to a power
+// of two and clamped to [minResolution, maxResolution].
+inline uint32_t ScreenSizedResolution(float screenRadius, float texelsPerPixel, uint32_t minResolution, uint32_t maxResolution) {
+  float wanted = std::min(2.0f * screenRadius * texelsPerPixel, float(maxResolution));
+  uint32_t r = 1;
+  while (float(r) < wanted && r < (1u << 30)) r <<= 1;
+  return std::clamp(r, minResolution, maxResolution);
 }
 
 }  // namespace sp::tech::cube

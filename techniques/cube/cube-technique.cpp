@@ -31,12 +31,6 @@ namespace {
 // Cube maps one frame may hold (t0..t7 of the lighting include).
 constexpr uint32_t kMaxCubeSlots = 8;
 
-uint32_t NextPowerOfTwo(float x) {
-  uint32_t r = 1;
-  while (float(r) < x && r < (1u << 30)) r <<= 1;
-  return r;
-}
-
 class CubeTechnique final : public Technique {
  public:
   std::string Name() const override { return "cube"; }
@@ -257,22 +251,12 @@ class CubeTechnique final : public Technique {
     return chosen;
   }
 
-  // Radius in pixels of the light's range sphere on screen (the screen's half height when the
-  // camera is inside it).
   static float ScreenRadius(const LocalLight& l, const FrameInputs& frame) {
-    float d = glm::length(l.position - frame.camera.position);
-    float halfHeight = 0.5f * float(frame.height);
-    if (d <= l.range * 1.0001f) return 1e9f;
-    float tanHalf = l.range / std::sqrt(d * d - l.range * l.range);
-    return std::min(1e9f, tanHalf * frame.cameraProj[1][1] * halfHeight);
+    return cube::ScreenRadius(l.position, l.range, frame.camera.position, frame.cameraProj, frame.height);
   }
 
-  // A face spans the sphere's diameter (2 ScreenRadius pixels) at its far end, so that many
-  // texels give one texel per pixel there, and more nearer the light.
   uint32_t ResolutionFor(const LocalLight& l, const FrameInputs& frame) const {
-    if (!fromScreen_) return resolution_;
-    float wanted = 2.0f * ScreenRadius(l, frame) * texelsPerPixel_;
-    return std::clamp(NextPowerOfTwo(std::min(wanted, float(resolution_))), minResolution_, resolution_);
+    return fromScreen_ ? cube::ScreenSizedResolution(ScreenRadius(l, frame), texelsPerPixel_, minResolution_, resolution_) : resolution_;
   }
 
   void EnsureSlotMaps(Slot& slot, uint32_t resolution) {

@@ -61,12 +61,21 @@ class VsdctTechnique final : public Technique {
         {ParamSpec::Int, "receiver_plane", "1: each tap compares the receiver's plane at the tap (exact, from the normal) and a texel's slope less, so wide kernels have no acne; 0: the centre's depth for every tap",
          "1", 0, 1, {}},
         {ParamSpec::Int, "cull_faces", "1: skip the faces whose frustum (widened by the guard band) meets neither the camera's nor a visible receiver (their tiles stay cleared: lit)", "1", 0, 1, {}},
+        {ParamSpec::Choice, "resolution_from", "fixed: tiles of `resolution`; screen: each frame's tile from the screen size of the light's range sphere, between min_resolution and resolution (King's smaller tile)", "fixed", 0, 0, {"fixed", "screen"}},
+        {ParamSpec::Int, "min_resolution", "resolution_from=screen: the smallest tile (face texels, guard band not included)", "64", 16, 4096, {}},
+        {ParamSpec::Float, "texels_per_pixel", "resolution_from=screen: face texels per screen pixel across the light's range sphere", "1.0", 0.01, 100, {}},
     };
   }
 
   void Configure(Device& device, const ParamValues& p) override {
     light_ = uint32_t(p.getInt("light"));
-    resolution_ = uint32_t(p.getInt("resolution"));
+    device_ = &device;
+    maxResolution_ = uint32_t(p.getInt("resolution"));
+    fromScreen_ = p.getChoice("resolution_from") == "screen";
+    minResolution_ = uint32_t(p.getInt("min_resolution"));
+    texelsPerPixel_ = p.getFloat("texels_per_pixel");
+    if (fromScreen_ && minResolution_ > maxResolution_)
+      throw std::invalid_argument("vsdct: min_resolution=" + std::to_string(minResolution_) + " is above resolution=" + std::to_string(maxResolution_));
     near_ = p.getFloat("near");
     guard_ = uint32_t(p.getInt("guard"));
     cullFaces_ = p.getInt("cull_faces") != 0;
@@ -81,45 +90,7 @@ class VsdctTechnique final : public Technique {
       throw std::invalid_argument("vsdct: guard=" + std::to_string(guard_) + " is too small for filter=" + kFilters[filter_] +
                                   (filter_ == 0 ? "" : " kernel=" + std::to_string(kernel_)) + ", which reads " + std::to_string(reach) +
                                   " texel(s) past the face edge (use guard >= " + std::to_string(reach) + ", or guard=0 to clamp)");
-    tile_ = resolution_ + 2 * guard_;
-
-    TEXTURE2D_DESC td;
-    td.Width = 3 * tile_;
-    td.Height = 2 * tile_;
-    td.ArraySize = 1;  // read as a one-slice Texture2DArray, what shadow-filter.hlsli takes
-    td.Format = FORMAT_R32_TYPELESS;
-    td.BindFlags = BIND_DEPTH_STENCIL | BIND_SHADER_RESOURCE;
-    atlas_ = device.CreateTexture2D(td);
-    atlas_->SetDebugName("vsdct depth atlas");
-    dsv_ = MakeSliceDepthViews(device, atlas_.get())[0];
-    srv_ = MakeSliceArraySrv(device, atlas_.get());
-
-    // The indirection cube: per face (tile origin of the face's inner R x R texels, face, 0).
-    float texels[6][4];
-    SUBRESOURCE_DATA init[6];
-    for (int f = 0; f < 6; ++f) {
-      glm::uvec2 o = TileOrigin(f);
-      texels[f][0] = float(o.x + guard_);
-      texels[f][1] = float(o.y + guard_);
-      texels[f][2] = float(f);
-      texels[f][3] = 0.0f;
-      init[f].pSysMem = texels[f];
-      init[f].SysMemPitch = sizeof(texels[f]);
-    }
-    TEXTURE2D_DESC cd;
-    cd.Width = cd.Height = 1;
-    cd.ArraySize = 6;
-    cd.Format = FORMAT_R32G32B32A32_FLOAT;
-    cd.Usage = USAGE_IMMUTABLE;
-    cd.BindFlags = BIND_SHADER_RESOURCE;
-    cd.MiscFlags = RESOURCE_MISC_TEXTURECUBE;
-    indirection_ = device.CreateTexture2D(cd, init);
-    indirection_->SetDebugName("vsdct indirection cube");
-    SHADER_RESOURCE_VIEW_DESC sd;
-    sd.Format = FORMAT_R32G32B32A32_FLOAT;
-    sd.ViewDimension = SRV_DIMENSION_TEXTURECUBE;
-    sd.TextureCube = {0, 1};
-    indirectionSrv_ = device.CreateShaderResourceView(indirection_.get(), &sd);
+    EnsureAtlas(maxResolution_);
 
     RASTERIZER_DESC rd;
     // As cube: the faces' bases are mirror images of a camera's, so both sides are drawn.
@@ -143,6 +114,9 @@ class VsdctTechnique final : public Technique {
   void RenderShadows(DeviceContext& ctx, SceneDrawer& drawer, const FrameInputs& frame) override {
     GpuTimer::Scope timed(frame.timer, ctx, "shadow");
     const LocalLight& l = ShadowedPointLight("vsdct", light_, near_, frame);
+    EnsureAtlas(fromScreen_ ? cube::ScreenSizedResolution(cube::ScreenRadius(l.position, l.range, frame.camera.position, frame.cameraProj, frame.height),
+                                                          texelsPerPixel_, minResolution_, maxResolution_)
+                            : maxResolution_);
     Constants c{};
     c.lightPosition = l.position;
     c.depthA = cube::DepthA(near_, l.range);
@@ -206,6 +180,52 @@ class VsdctTechnique final : public Technique {
   int LabLocalLight(const scene::Scene&) const override { return int(light_); }  // point lights come first
 
  private:
+  // The atlas and the indirection cube (whose tile origins depend on the tile size) for faces of
+  // `resolution` texels; kept while the resolution stays.
+  void EnsureAtlas(uint32_t resolution) {
+    if (atlas_ && resolution == resolution_) return;
+    resolution_ = resolution;
+    tile_ = resolution_ + 2 * guard_;
+
+    TEXTURE2D_DESC td;
+    td.Width = 3 * tile_;
+    td.Height = 2 * tile_;
+    td.ArraySize = 1;  // read as a one-slice Texture2DArray, what shadow-filter.hlsli takes
+    td.Format = FORMAT_R32_TYPELESS;
+    td.BindFlags = BIND_DEPTH_STENCIL | BIND_SHADER_RESOURCE;
+    atlas_ = device_->CreateTexture2D(td);
+    atlas_->SetDebugName("vsdct depth atlas");
+    dsv_ = MakeSliceDepthViews(*device_, atlas_.get())[0];
+    srv_ = MakeSliceArraySrv(*device_, atlas_.get());
+
+    // The indirection cube: per face (tile origin of the face's inner R x R texels, face, 0).
+    float texels[6][4];
+    SUBRESOURCE_DATA init[6];
+    for (int f = 0; f < 6; ++f) {
+      glm::uvec2 o = TileOrigin(f);
+      texels[f][0] = float(o.x + guard_);
+      texels[f][1] = float(o.y + guard_);
+      texels[f][2] = float(f);
+      texels[f][3] = 0.0f;
+      init[f].pSysMem = texels[f];
+      init[f].SysMemPitch = sizeof(texels[f]);
+    }
+    TEXTURE2D_DESC cd;
+    cd.Width = cd.Height = 1;
+    cd.ArraySize = 6;
+    cd.Format = FORMAT_R32G32B32A32_FLOAT;
+    cd.Usage = USAGE_IMMUTABLE;
+    cd.BindFlags = BIND_SHADER_RESOURCE;
+    cd.MiscFlags = RESOURCE_MISC_TEXTURECUBE;
+    indirection_ = device_->CreateTexture2D(cd, init);
+    indirection_->SetDebugName("vsdct indirection cube");
+    SHADER_RESOURCE_VIEW_DESC sd;
+    sd.Format = FORMAT_R32G32B32A32_FLOAT;
+    sd.ViewDimension = SRV_DIMENSION_TEXTURECUBE;
+    sd.TextureCube = {0, 1};
+    indirectionSrv_ = device_->CreateShaderResourceView(indirection_.get(), &sd);
+  }
+
   glm::uvec2 TileOrigin(int f) const { return glm::uvec2(uint32_t(f % 3) * tile_, uint32_t(f / 3) * tile_); }
 
   // Face f's clip transform with x and y scaled so the face's [-1, 1] covers the inner R texels
@@ -231,7 +251,10 @@ class VsdctTechnique final : public Technique {
   };
   static_assert(sizeof(Constants) == 48 + 3 * 6 * 16);
 
-  uint32_t light_ = 0, resolution_ = 0, guard_ = 0, tile_ = 0;
+  Device* device_ = nullptr;
+  uint32_t light_ = 0, resolution_ = 0, maxResolution_ = 0, minResolution_ = 64, guard_ = 0, tile_ = 0;
+  bool fromScreen_ = false;
+  float texelsPerPixel_ = 1.0f;
   float near_ = 0.05f;
   int filter_ = 0, kernel_ = 3;
   bool receiverPlane_ = true;

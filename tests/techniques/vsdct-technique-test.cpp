@@ -181,6 +181,25 @@ TEST_P(VsdctTechniqueTest, GuardBandsRemoveTheSeamThatClampingLeaves) {
                                               << " of " << n[1].farChecked << " elsewhere";
 }
 
+// resolution_from=screen (King: "with VSDCT, a smaller tile"): inside the light's range the tiles
+// are the largest, from 200 m away the smallest; the exact shadows hold with it.
+TEST_P(VsdctTechniqueTest, ScreenSizedTilesFollowTheLightsSizeOnScreen) {
+  std::map<std::string, std::string> params = {{"resolution", "512"}, {"resolution_from", "screen"}, {"min_resolution", "64"}};
+  CheckRoomShadows(params);
+  CubeRoom room = MakeCubeRoom();
+  std::unique_ptr<tech::Renderer> r = MakeRenderer(room.scene, 160, 120, params);
+  auto atlasBytes = [](uint64_t face) { return 3 * (face + 10) * 2 * (face + 10) * 4 + 6 * 16; };  // guard 5 on each side
+  r->RenderFrame(room.scene.camera, room.scene.light);
+  EXPECT_EQ(r->technique().Stats().memoryBytes, atlasBytes(512));
+  scene::Camera far = room.scene.camera;
+  far.position = {0.0f, 3.0f, 200.0f};
+  far.target = {0.0f, 3.0f, 0.0f};
+  far.farZ = 400.0f;
+  r->RenderFrame(far, room.scene.light);
+  EXPECT_EQ(r->technique().Stats().memoryBytes, atlasBytes(64));
+  EXPECT_EQ(r->technique().Layers()[0].width, 64u);
+}
+
 // Faces without a visible receiver are not rendered (their tiles stay cleared), as in cube.
 TEST_P(VsdctTechniqueTest, FacesWithoutVisibleReceiversAreSkipped) {
   ExpectTheFaceWithoutReceiversSkipped([&](const scene::Scene& s, uint32_t w, uint32_t h, int cull) {
