@@ -133,6 +133,8 @@ void GLDevice::Init(const DeviceDesc& desc) {
 
   polygonOffsetClamp = reinterpret_cast<PFNGLPOLYGONOFFSETCLAMPEXTPROC>(eglGetProcAddress("glPolygonOffsetClampEXT"));
   if (!polygonOffsetClamp) polygonOffsetClamp = reinterpret_cast<PFNGLPOLYGONOFFSETCLAMPEXTPROC>(eglGetProcAddress("glPolygonOffsetClamp"));
+  if (desc.disableDepthBiasClamp) polygonOffsetClamp = nullptr;
+  info_.depthBiasClamp = polygonOffsetClamp != nullptr;
   hasFilterMinmax = HasExtension("GL_ARB_texture_filter_minmax") || HasExtension("GL_EXT_texture_filter_minmax");
   // The GLSL of such a vertex shader requires this extension by name (hlsl/glsl.cpp).
   info_.vsRenderTargetArrayIndex = !desc.disableVsRenderTargetArrayIndex && HasExtension("GL_ARB_shader_viewport_layer_array");

@@ -84,22 +84,11 @@ void GLContext::ApplyRasterizer(const PipelineState& s) {
   SetCached(cache_.polygonMode, fill, [&] { glPolygonMode(GL_FRONT_AND_BACK, fill); });
 
   // D3D11 biases triangles only (wireframe ones too), never line or point primitives.
-  const bool triangles = s.topology == PRIMITIVE_TOPOLOGY_TRIANGLELIST || s.topology == PRIMITIVE_TOPOLOGY_TRIANGLESTRIP;
-  const bool bias = triangles && (r.DepthBias != 0 || r.SlopeScaledDepthBias != 0.0f);
-  SetCached(cache_.polygonOffsetFill, bias, [&] { Toggle(GL_POLYGON_OFFSET_FILL, bias); });
-  SetCached(cache_.polygonOffsetLine, bias, [&] { Toggle(GL_POLYGON_OFFSET_LINE, bias); });
-  if (bias) {
-    const DeviceInfo& info = dev_.info();
-    float scale = info.depthBiasScaleD32;
-    if (const DepthStencilView* dsv = s.depthStencil.get()) {
-      FORMAT f = dsv->ViewFormat();
-      if (f == FORMAT_D16_UNORM) scale = info.depthBiasScaleD16;
-      else if (f == FORMAT_D24_UNORM_S8_UINT) scale = info.depthBiasScaleD24;
-    }
-    std::array<float, 3> offset{r.SlopeScaledDepthBias, float(r.DepthBias) * scale, r.DepthBiasClamp};
-    if (!dev_.polygonOffsetClamp && offset[2] != 0.0f)
-      ThrowError(ErrorId::NOT_SUPPORTED, "Draw", s.rasterizerState ? s.rasterizerState->Describe() : "RasterizerState",
-                 "DepthBiasClamp needs GL_EXT_polygon_offset_clamp, which this driver lacks");
+  const PipelineState::DepthBias b = s.depthBias(dev_.info());
+  SetCached(cache_.polygonOffsetFill, b.enable, [&] { Toggle(GL_POLYGON_OFFSET_FILL, b.enable); });
+  SetCached(cache_.polygonOffsetLine, b.enable, [&] { Toggle(GL_POLYGON_OFFSET_LINE, b.enable); });
+  if (b.enable) {
+    std::array<float, 3> offset{b.slope, b.constant, b.clamp};
     SetCached(cache_.polygonOffset, offset, [&] {
       if (dev_.polygonOffsetClamp) dev_.polygonOffsetClamp(offset[0], offset[1], offset[2]);
       else glPolygonOffset(offset[0], offset[1]);

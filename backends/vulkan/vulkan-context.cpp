@@ -17,8 +17,6 @@ const char* DrawCallName(detail::DrawArgs::Kind k, const detail::DrawArgs& a) {
   }
 }
 
-bool IsTriangles(PRIMITIVE_TOPOLOGY t) { return t == PRIMITIVE_TOPOLOGY_TRIANGLELIST || t == PRIMITIVE_TOPOLOGY_TRIANGLESTRIP; }
-
 uint32_t ColorCount(const PipelineState& s) {
   uint32_t n = 0;
   for (uint32_t i = 0; i < s.numRenderTargets && i < SIMULTANEOUS_RENDER_TARGET_COUNT; ++i)
@@ -117,13 +115,9 @@ void VulkanContext::SetDynamicState(const PipelineState& s) {
     sc = {{l, t}, {uint32_t(ri - l), uint32_t(b - t)}};
   }
   vkCmdSetScissorWithCount(cmd, 1, &sc);
-  bool bias = IsTriangles(s.topology) && (rd.DepthBias != 0 || rd.SlopeScaledDepthBias != 0.0f);
-  vkCmdSetDepthBiasEnable(cmd, bias);
-  if (bias) {
-    VkFormat df = s.depthStencil ? ViewOf(s.depthStencil.get()).format : VK_FORMAT_UNDEFINED;
-    float constant = float(rd.DepthBias) * dev_->DepthBiasScale(df);
-    vkCmdSetDepthBias(cmd, constant, dev_->feat.depthBiasClamp ? rd.DepthBiasClamp : 0.0f, rd.SlopeScaledDepthBias);
-  }
+  const PipelineState::DepthBias bias = s.depthBias(dev_->Info());
+  vkCmdSetDepthBiasEnable(cmd, bias.enable);
+  if (bias.enable) vkCmdSetDepthBias(cmd, bias.constant, bias.clamp, bias.slope);
   vkCmdSetBlendConstants(cmd, s.blendFactor.data());
   vkCmdSetStencilReference(cmd, VK_STENCIL_FACE_FRONT_AND_BACK, s.stencilRef & 0xff);
   // D3D11 always cuts strips at the all-ones index.
@@ -165,8 +159,6 @@ void VulkanContext::BindVertexBuffers(const PipelineState& s) {
 
 void VulkanContext::Draw(const PipelineState& s, uint32_t dirty, const detail::DrawArgs& args) {
   const char* call = DrawCallName(args.kind, args);
-  const VIEWPORT& vp = s.viewports[0];
-  if (!(vp.Width > 0 && vp.Height > 0)) return;  // D3D11 rasterizes nothing into an empty viewport
   if (!cur_) BeginBatch();
   VkShaderObj& vs = detail::BackendAs<VkShaderObj>(s.stage(ShaderStage::Vertex).shader);
   VkShaderObj* ps = s.stage(ShaderStage::Pixel).shader ? &detail::BackendAs<VkShaderObj>(s.stage(ShaderStage::Pixel).shader) : nullptr;
@@ -221,6 +213,7 @@ void VulkanContext::Draw(const PipelineState& s, uint32_t dirty, const detail::D
     key.dsvFlags = s.depthStencil->GetDesc().Flags;
   }
   bool attachmentless = key.views == RenderPassKey{}.views;
+  const VIEWPORT& vp = s.viewports[0];
   bool sameArea = !attachmentless || (rendering_ && passExtent_.width >= uint32_t(std::ceil(double(vp.TopLeftX) + vp.Width)) &&
                                       passExtent_.height >= uint32_t(std::ceil(double(vp.TopLeftY) + vp.Height)));
   bool restart = !rendering_ || !barriers_.Empty() || !(attachmentless ? pass_.views == key.views && sameArea : pass_ == key);

@@ -76,6 +76,7 @@ VulkanDevice::VulkanDevice(Device& core, const DeviceDesc& desc) : DeviceBackend
     CreateInstance(desc.debug);
     PickPhysicalDevice();
     CreateLogicalDevice(!desc.disableVsRenderTargetArrayIndex);
+    if (desc.disableDepthBiasClamp) info_.depthBiasClamp = false;
     FillInfo();
     alloc.Init(this);
     VkPipelineCacheCreateInfo pci{VK_STRUCTURE_TYPE_PIPELINE_CACHE_CREATE_INFO};
@@ -399,6 +400,7 @@ void VulkanDevice::CreateLogicalDevice(bool allowLayerOutput) {
   feat.samplerMinmax = e12.samplerFilterMinmax;
   feat.depthClamp = e.depthClamp;
   feat.depthBiasClamp = e.depthBiasClamp;
+  info_.depthBiasClamp = feat.depthBiasClamp;
   feat.fillModeNonSolid = e.fillModeNonSolid;
   feat.dualSrcBlend = e.dualSrcBlend;
   feat.independentBlend = e.independentBlend;
@@ -527,17 +529,6 @@ void VulkanDevice::ForgetShader(uint64_t uid) {
     } else {
       ++it;
     }
-  }
-}
-
-float VulkanDevice::DepthBiasScale(VkFormat f) const {
-  switch (f) {
-    case VK_FORMAT_D16_UNORM: return info_.depthBiasScaleD16;
-    case VK_FORMAT_D24_UNORM_S8_UINT:
-    case VK_FORMAT_X8_D24_UNORM_PACK32: return info_.depthBiasScaleD24;
-    case VK_FORMAT_D32_SFLOAT:
-    case VK_FORMAT_D32_SFLOAT_S8_UINT: return info_.depthBiasScaleD32;
-    default: return 1.0f;
   }
 }
 

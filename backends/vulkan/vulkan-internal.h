@@ -402,7 +402,6 @@ class VulkanDevice final : public detail::DeviceBackend {
   void ForgetShader(uint64_t uid);
   uint32_t SampleCountsFor(VkFormat f) const;
   VkFormatFeatureFlags2 OptimalFeatures(VkFormat f) const;
-  float DepthBiasScale(VkFormat depthFormat) const;
 
   std::unique_ptr<detail::BackendObject> CreateBufferBackend(Buffer& buffer, const SUBRESOURCE_DATA* init) override;
   std::unique_ptr<detail::BackendObject> CreateTextureBackend(Texture& texture, const SUBRESOURCE_DATA* init) override;

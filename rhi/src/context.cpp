@@ -20,6 +20,24 @@ const DEPTH_STENCIL_DESC& PipelineState::depthStencilDesc() const {
   return depthStencilState ? depthStencilState->GetDesc() : kDefaultDepthStencil;
 }
 const BLEND_DESC& PipelineState::blend() const { return blendState ? blendState->GetDesc() : kDefaultBlend; }
+
+PipelineState::DepthBias PipelineState::depthBias(const DeviceInfo& info) const {
+  const RASTERIZER_DESC& r = rasterizer();
+  DepthBias b;
+  const bool triangles = topology == PRIMITIVE_TOPOLOGY_TRIANGLELIST || topology == PRIMITIVE_TOPOLOGY_TRIANGLESTRIP;
+  b.enable = triangles && (r.DepthBias != 0 || r.SlopeScaledDepthBias != 0.0f);
+  if (!b.enable) return b;
+  float scale = info.depthBiasScaleD32;
+  if (depthStencil) {
+    FORMAT f = depthStencil->ViewFormat();
+    if (f == FORMAT_D16_UNORM) scale = info.depthBiasScaleD16;
+    else if (f == FORMAT_D24_UNORM_S8_UINT) scale = info.depthBiasScaleD24;
+  }
+  b.constant = float(r.DepthBias) * scale;
+  b.slope = r.SlopeScaledDepthBias;
+  b.clamp = r.DepthBiasClamp;
+  return b;
+}
 }  // namespace detail
 
 using namespace detail;
@@ -296,6 +314,10 @@ void DeviceContext::OMSetBlendState(BlendState* s, const float blendFactor[4], u
 void DeviceContext::DoDraw(const detail::DrawArgs& args, const char* call) {
   std::vector<UnboundRead> unbound;
   DrawValidator::CheckDraw(*this, args, call, unbound);
+  // D3D11 rasterizes nothing into a viewport of zero width or height (Vulkan forbids one; none set
+  // at all is refused by the validator above). The state stays dirty for the next draw.
+  const VIEWPORT& vp = state_->viewports[0];
+  if (!(vp.Width > 0 && vp.Height > 0)) return;
   NullBindings nulls(*this, unbound);
   backend_->Draw(*state_, dirty_ | nulls.Dirty(), args);
   dirty_ = 0;

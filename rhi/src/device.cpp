@@ -345,6 +345,11 @@ Ref<RasterizerState> Device::CreateRasterizerState(const RASTERIZER_DESC& d) {
   if (d.FillMode != FILL_SOLID && d.FillMode != FILL_WIREFRAME) Fail(ErrorId::INVALID_DESC, call, "RasterizerState", "FillMode must be FILL_SOLID or FILL_WIREFRAME");
   if (d.CullMode < CULL_NONE || d.CullMode > CULL_BACK) Fail(ErrorId::INVALID_DESC, call, "RasterizerState", "CullMode must be CULL_NONE, CULL_FRONT or CULL_BACK");
   if (std::isnan(d.DepthBiasClamp) || std::isnan(d.SlopeScaledDepthBias)) Fail(ErrorId::INVALID_DESC, call, "RasterizerState", "depth bias values must not be NaN");
+  // One policy for both backends: a clamp the device cannot apply is refused here, where the
+  // state is made, not dropped (a silently unclamped bias) or refused only at draw time.
+  if (d.DepthBiasClamp != 0.0f && !info_.depthBiasClamp)
+    Fail(ErrorId::NOT_SUPPORTED, call, "RasterizerState",
+         "DepthBiasClamp=" + std::to_string(d.DepthBiasClamp) + " needs depth-bias clamping, which this device lacks (Vulkan depthBiasClamp, GL_EXT_polygon_offset_clamp)");
   return Make<RasterizerState>(d);
 }
 

@@ -49,6 +49,15 @@ struct PipelineState {
 
   const RASTERIZER_DESC& rasterizer() const;
   const DEPTH_STENCIL_DESC& depthStencilDesc() const;
+  // D3D11's depth bias for the next draw, resolved for the driver: enabled for triangles only
+  // (wireframe too, never lines or points), the constant DepthBias in the driver's units for the
+  // bound depth format (DeviceInfo's measured scales), the clamp as given (CreateRasterizerState
+  // refuses a non-zero clamp on a device without depth-bias clamping). Backends only translate it.
+  struct DepthBias {
+    bool enable = false;
+    float constant = 0.0f, slope = 0.0f, clamp = 0.0f;
+  };
+  DepthBias depthBias(const DeviceInfo& info) const;
   const BLEND_DESC& blend() const;
   StageBindings& stage(ShaderStage s) { return stages[size_t(s)]; }
   const StageBindings& stage(ShaderStage s) const { return stages[size_t(s)]; }

@@ -304,6 +304,58 @@ TEST_P(StateTest, DepthBiasFollowsD3DFormula) {
 
 // Vertex input: integer and normalized formats, offsets, per-instance data with step rates 1
 // and 2, and step rate 0 (the data never advances), with StartInstanceLocation.
+// D3D11 rasterizes nothing into a viewport of zero width or height; the rule lives in the core
+// (DeviceContext's draw), so both backends skip the draw, and the state it carried reaches the
+// next draw with a real viewport. (A draw with no viewport set at all is refused by validation.)
+TEST_P(StateTest, EmptyViewportDrawsNothing) {
+  const uint32_t W = 8, H = 4;
+  Target t = MakeTarget(device(), W, H, FORMAT_R32G32B32A32_FLOAT);
+  const float zero[4] = {0, 0, 0, 0};
+  ctx().ClearRenderTargetView(t.rtv.get(), zero);
+  RenderTargetView* rtvs[] = {t.rtv.get()};
+  ctx().OMSetRenderTargets(1, rtvs, nullptr);
+  ctx().PSSetShader(colorPs_.get());
+  SetColor(1, 0, 0, 1);
+  const std::vector<Vertex> all = {{0, 0, 0.5f}, {8, 0, 0.5f}, {8, 4, 0.5f}, {0, 0, 0.5f}, {8, 4, 0.5f}, {0, 4, 0.5f}};
+  VIEWPORT flat{0, 0, float(W), 0, 0, 1}, thin{0, 0, 0, float(H), 0, 1};
+  ctx().RSSetViewports(1, &flat);
+  DrawPixels(all, W, H);
+  ctx().RSSetViewports(1, &thin);
+  DrawPixels(all, W, H);
+  std::vector<float> c = ReadTextureAs<float>(device(), ctx(), t.texture.get());
+  for (uint32_t i = 0; i < W * H; ++i) EXPECT_EQ(c[i * 4], 0.0f) << "pixel " << i << " drawn through an empty viewport";
+  SetViewport(ctx(), W, H);
+  DrawPixels(all, W, H);
+  c = ReadTextureAs<float>(device(), ctx(), t.texture.get());
+  for (uint32_t i = 0; i < W * H; ++i) EXPECT_EQ(c[i * 4], 1.0f) << "pixel " << i;
+  EXPECT_EQ(device().ValidationErrorCount(), 0u) << device().LastValidationError();
+}
+
+// One policy for a device without depth-bias clamping, in the core: a non-zero DepthBiasClamp is
+// refused when the state is made (GL used to refuse it at draw time, Vulkan to drop the clamp).
+TEST_P(StateTest, DepthBiasClampWithoutTheCapabilityIsRefusedWhenTheStateIsMade) {
+  EXPECT_TRUE(device().Info().depthBiasClamp) << "Mesa's drivers clamp depth bias";
+  DeviceDesc dd;
+  dd.backend = backend();
+  dd.disableDepthBiasClamp = true;
+  Ref<Device> dev = CreateDevice(dd);
+  EXPECT_FALSE(dev->Info().depthBiasClamp);
+  RASTERIZER_DESC rd;
+  rd.DepthBias = 100;
+  rd.SlopeScaledDepthBias = 1.0f;
+  EXPECT_NO_THROW(dev->CreateRasterizerState(rd));  // no clamp asked: fine
+  rd.DepthBiasClamp = 0.25f;
+  try {
+    dev->CreateRasterizerState(rd);
+    ADD_FAILURE() << "expected SP_NOT_SUPPORTED";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.id(), ErrorId::NOT_SUPPORTED) << e.what();
+    EXPECT_NE(std::string(e.what()).find("DepthBiasClamp"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("RasterizerState"), std::string::npos) << e.what();
+  }
+  EXPECT_NO_THROW(device().CreateRasterizerState(rd));  // the normal device has it
+}
+
 TEST_P(StateTest, VertexFormatsAndInstancing) {
   const char* src = R"(
 struct V { float4 pos : SV_Position; nointerpolation float4 color : COLOR; };

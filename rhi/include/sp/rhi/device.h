@@ -49,6 +49,9 @@ struct DeviceDesc {
   // Start the device as if the driver lacked vsRenderTargetArrayIndex (not enabled, reported
   // false), so the refusals and per-face fallbacks can be exercised on a driver that has it.
   bool disableVsRenderTargetArrayIndex = false;
+  // Start the device as if the driver lacked depth-bias clamping (reported false), to exercise
+  // CreateRasterizerState's refusal of a non-zero DepthBiasClamp.
+  bool disableDepthBiasClamp = false;
 };
 
 // What the device is, and what it measured about the driver when it started.
@@ -71,6 +74,10 @@ struct DeviceInfo {
   // enabled too when offered), GL_ARB_shader_viewport_layer_array. Without it CreateVertexShader
   // refuses such a shader.
   bool vsRenderTargetArrayIndex = false;
+  // RASTERIZER_DESC::DepthBiasClamp is honoured (Vulkan's depthBiasClamp feature, GL 4.6 or
+  // GL_EXT_polygon_offset_clamp); without it CreateRasterizerState refuses a non-zero clamp
+  // rather than draw with an unclamped bias.
+  bool depthBiasClamp = false;
 };
 
 enum FORMAT_SUPPORT : uint32_t {
