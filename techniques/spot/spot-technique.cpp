@@ -7,6 +7,7 @@
 #include <glm/ext/matrix_transform.hpp>
 #include <stdexcept>
 
+#include "cube/cube-culling.h"
 #include <sp/tech/technique.h>
 
 namespace sp::tech {
@@ -76,7 +77,7 @@ class SpotTechnique final : public Technique {
     ctx.RSSetState(rasterizer_.get());
     ctx.OMSetDepthStencilState(nullptr, 0);
     const std::vector<scene::Instance>& instances = s.instances;
-    trianglesSubmitted_ = drawer.DrawDepth(ctx, viewProj_, [&](uint32_t i) { return InFrustum(viewProj_, instances[i].worldBounds); });
+    trianglesSubmitted_ = drawer.DrawDepth(ctx, viewProj_, [&](uint32_t i) { return cube::BoxMayMeetFrustum(viewProj_, instances[i].worldBounds); });
   }
 
   std::string LightingInclude() const override { return "spot/shadow.hlsli"; }
@@ -92,23 +93,6 @@ class SpotTechnique final : public Technique {
   int LabLocalLight(const scene::Scene& scene) const override { return int(scene.pointLights.size() + light_); }
 
  private:
-  // Outside when all 8 corners are outside one clip plane (exact for the box: the planes are linear).
-  static bool InFrustum(const glm::mat4& viewProj, const scene::Bounds& b) {
-    glm::vec3 corners[8];
-    b.corners(corners);
-    glm::vec4 c[8];
-    for (int i = 0; i < 8; ++i) c[i] = viewProj * glm::vec4(corners[i], 1.0f);
-    for (int plane = 0; plane < 6; ++plane) {
-      bool allOut = true;
-      for (const glm::vec4& p : c) {
-        float d = plane == 0 ? p.w - p.x : plane == 1 ? p.w + p.x : plane == 2 ? p.w - p.y : plane == 3 ? p.w + p.y : plane == 4 ? p.z : p.w - p.z;
-        allOut = allOut && d < 0;
-      }
-      if (allOut) return false;
-    }
-    return true;
-  }
-
   // cbuffer SpotShadow in shaders-hlsl/spot/shadow.hlsli.
   struct Constants {
     glm::mat4 viewProj;
