@@ -174,6 +174,13 @@ TEST(D3D11Compat, DeepNestingIsAnErrorNotACrash) {
   EXPECT_TRUE(Contains(d.message, "nested more than 512 levels")) << d.message;
 }
 
+TEST(D3D11Compat, TenThousandNestedBracesAreAnErrorNotACrash) {
+  hlsl::Diagnostic d = FirstError("[numthreads(1, 1, 1)] void main() {\n" + std::string(10000, '{') + "\n" +
+                                  std::string(10000, '}') + "\n}\n");
+  EXPECT_GE(d.line, 2);
+  EXPECT_TRUE(Contains(d.message, "nested more than 512 levels")) << d.message;
+}
+
 // Unbalanced brackets are refused before any rewrite reads the tokens, at the line of the bracket
 // without a partner (an unmatched ']' in front of a for loop once sent the for-loop rewrite past
 // the end of the tokens: found by fuzz/hlsl-preprocess-fuzz.cpp, its input is a seed there now).

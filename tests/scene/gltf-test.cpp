@@ -137,6 +137,23 @@ TEST_F(MalformedGltf, ErrorsNameFileAndElement) {
   EXPECT_THROW(scene::LoadGltf(dir_ / "does-not-exist.gltf"), std::runtime_error);
 }
 
+// A file may claim any count; the loader must check it against the bytes that exist before it
+// allocates for it (2^40 vertices would be 32 TiB of positions).
+TEST_F(MalformedGltf, HugeCountsAreErrorsNotAllocations) {
+  for (int accessor : {0, 1}) {  // the positions, then the indices
+    json j = base_;
+    j["accessors"][accessor]["count"] = 1099511627776ull;
+    std::string name = "huge-count-" + std::to_string(accessor);
+    std::string e = LoadError(j, name);
+    EXPECT_NE(e.find(name + ".gltf"), std::string::npos) << e;
+    EXPECT_NE(e.find("accessor " + std::to_string(accessor)), std::string::npos) << e;
+  }
+  json j = base_;
+  j["bufferViews"][0]["byteOffset"] = 18446744073709551000ull;  // offset + length wraps around
+  std::string e = LoadError(j, "wrapping-offset");
+  EXPECT_NE(e.find("wrapping-offset.gltf"), std::string::npos) << e;
+}
+
 TEST_F(MalformedGltf, OutOfRangeIndexIsAnError) {
   std::ofstream bin(dir_ / "tri.bin", std::ios::binary | std::ios::in | std::ios::out);
   bin.seekp(36 + 4);
