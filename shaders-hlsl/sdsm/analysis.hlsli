@@ -12,6 +12,9 @@
 #define SDSM_MAX_PARTITIONS 8
 #define SDSM_TILE 16
 #define SDSM_GROUP_THREADS (SDSM_TILE * SDSM_TILE)
+// Passes that walk the depth buffer in strips: a group of SDSM_STRIP threads covers an
+// SDSM_STRIP x SDSM_STRIP tile, one column per thread (C++: kStripTile).
+#define SDSM_STRIP 64
 
 // The results buffer (RWByteAddressBuffer, 32-bit words).
 #define SDSM_W_MIN 0          // min view depth of non-sky pixels (float bits; +inf when none)

@@ -25,6 +25,9 @@ namespace sp::tech::sdsm {
 
 enum class ReduceMode { TwoPass, Atomic };
 
+// SDSM_STRIP of shaders-hlsl/sdsm/analysis.hlsli.
+constexpr uint32_t kStripTile = 64;
+
 struct AnalysisSettings {
   ReduceMode reduce = ReduceMode::TwoPass;
   PartitionSettings partitions;
@@ -69,6 +72,8 @@ class DepthAnalysis {
   ShaderResourceView* resultsSrv() const { return resultsSrv_.get(); }  // ByteAddressBuffer
   Buffer* histogram() const { return histogram_.get(); }                // histogramBins() uints
   uint32_t histogramBins() const { return bins_; }
+  // The b0 constants SetFrame wrote (for passes measured against the analysis, analysis-cost.h).
+  Buffer* constants() const { return constants_.get(); }
 
  private:
   void EnsureTiles(uint32_t count);
