@@ -13,7 +13,7 @@
 #define SDSM_TILE 16
 #define SDSM_GROUP_THREADS (SDSM_TILE * SDSM_TILE)
 // Passes that walk the depth buffer in strips: a group of SDSM_STRIP threads covers an
-// SDSM_STRIP x SDSM_STRIP tile, one column per thread (C++: kStripTile).
+// SDSM_STRIP x SDSM_STRIP tile, one row per thread (C++: kStripTile).
 #define SDSM_STRIP 64
 
 // The results buffer (RWByteAddressBuffer, 32-bit words).
@@ -51,6 +51,15 @@ cbuffer SdsmAnalysis : register(b0) {
   float3 lightOrigin;      // and of the camera position
   uint kmeansIterations;
 };
+
+// Strip tiles: how many cover the depth buffer, and the pixels of thread gi's row of tile `group`
+// (x from SdsmStripRow(...).x to SdsmStripRowEnd(...), exclusive; an empty range below the
+// buffer's last row).
+uint2 SdsmStripTiles() { return (depthSize + SDSM_STRIP - 1) / SDSM_STRIP; }
+uint2 SdsmStripRow(uint2 group, uint gi) { return group * SDSM_STRIP + uint2(0, gi); }
+uint SdsmStripRowEnd(uint2 group, uint gi) {
+  return group.y * SDSM_STRIP + gi < depthSize.y ? min(group.x * SDSM_STRIP + SDSM_STRIP, depthSize.x) : 0;
+}
 
 float SdsmViewDepth(float d) {
   precise float z = depthA / (depthB - d);

@@ -3,7 +3,8 @@
 // only reaches the output through a test no depth passes (a sum of depths in [0, 1] is never
 // negative), so the compiler cannot drop the loads, yet nothing else is stored.
 //   ReadTexel: one texel per thread, 16x16 threads per 16x16 tile (the analysis' old layout).
-//   ReadStrip: SDSM_STRIP threads per SDSM_STRIP^2 tile, each thread walking one column of it.
+//   ReadStrip: SDSM_STRIP threads per SDSM_STRIP^2 tile, each thread walking one row of it (the
+//              layout of the analysis passes).
 //   Empty:     no reads: one group of one thread, the cost of a dispatch alone.
 //! cs_5_0 ReadTexel
 //! cs_5_0 ReadStrip
@@ -27,10 +28,10 @@ void ReadTexel(uint3 pixel : SV_DispatchThreadID, uint3 group : SV_GroupID, uint
 [numthreads(SDSM_STRIP, 1, 1)]
 void ReadStrip(uint3 group : SV_GroupID, uint gi : SV_GroupIndex) {
   float sum = 0.0;
-  uint x = group.x * SDSM_STRIP + gi, y0 = group.y * SDSM_STRIP, y1 = min(y0 + SDSM_STRIP, depthSize.y);
-  if (x < depthSize.x)
-    for (uint y = y0; y < y1; ++y) sum += cameraDepth.Load(int3(x, y, 0));
-  Keep(sum, gi, group.y * ((depthSize.x + SDSM_STRIP - 1) / SDSM_STRIP) + group.x);
+  uint2 first = SdsmStripRow(group.xy, gi);
+  uint xEnd = SdsmStripRowEnd(group.xy, gi);
+  for (uint x = first.x; x < xEnd; ++x) sum += cameraDepth.Load(int3(x, first.y, 0));
+  Keep(sum, gi, group.y * SdsmStripTiles().x + group.x);
 }
 
 [numthreads(1, 1, 1)]
