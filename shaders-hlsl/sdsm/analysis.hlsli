@@ -76,12 +76,20 @@ float3 SdsmLightPosition(uint2 pixel, float z) {
   return p;
 }
 
-// Histogram bin of view depth z over [log zMin, log zMax] (clamped to the end bins).
-uint SdsmHistogramBin(float z, float zMin, float zMax) {
-  float lmin = log(zMin);
-  float range = log(zMax) - lmin;
-  float scale = range > 0 ? float(SDSM_BINS) / range : 0.0;
-  float t = (log(z) - lmin) * scale;
+// Histogram bin of view depth z over [log zMin, log zMax] (clamped to the end bins), in two steps
+// so a pass computes the range's part once rather than per pixel.
+struct SdsmBinRange {
+  float lmin, scale;
+};
+SdsmBinRange SdsmHistogramRange(float zMin, float zMax) {
+  SdsmBinRange r;
+  r.lmin = log(zMin);
+  float range = log(zMax) - r.lmin;
+  r.scale = range > 0 ? float(SDSM_BINS) / range : 0.0;
+  return r;
+}
+uint SdsmHistogramBin(float z, SdsmBinRange r) {
+  float t = (log(z) - r.lmin) * r.scale;
   return min(uint(max(t, 0.0)), uint(SDSM_BINS - 1));
 }
 #endif  // SDSM_LAYOUT_ONLY

@@ -14,7 +14,7 @@ RWByteAddressBuffer results : register(u0);
 groupshared uint gsBox[SDSM_MAX_PARTITIONS * 8];  // the results layout of SDSM_W_BOUNDS
 groupshared float gsSplit[SDSM_MAX_PARTITIONS + 1];
 
-// Thread gi's running box (keys) and sample count of partition p, merged into the group's.
+// A thread's box (keys) and sample count of partition p, merged into the group's.
 void MergeBox(uint p, uint3 lo, uint3 hi, uint n) {
   uint base = p * 8;
   InterlockedMin(gsBox[base + 0], lo.x);
@@ -26,40 +26,56 @@ void MergeBox(uint p, uint3 lo, uint3 hi, uint n) {
   InterlockedMax(gsBox[base + 6], hi.z);
 }
 
-// One SDSM_STRIP^2 tile per group, one row of it per thread. A row stays in one partition for long
-// runs, so each thread grows a box in registers and merges it into the groupshared one only when
-// its partition changes: seven groupshared atomics per run instead of per pixel.
+// Thread gi's row of tile `group`: one box per partition grown in registers, merged into the
+// groupshared boxes after the row, so no atomic sits inside the pixel loop. The per-partition
+// selects are unrolled over a compile-time count (the boxes stay in registers, not in a
+// dynamically indexed array); `split` holds +inf past K, which no view depth reaches.
+// Per pixel this pass is arithmetic-bound on Mesa's CPU drivers (the light-space transform and
+// the selects; eval/experiments/sdsm-analysis-cost.sh): BoundsRow<4> serves K <= 4, the default,
+// at half the selects of BoundsRow<8>.
+#define SDSM_BOUNDS_ROW(NAME, P)                                                                  \
+  void NAME(uint2 group, uint gi, float split[SDSM_MAX_PARTITIONS]) {                              \
+    uint3 lo[P], hi[P];                                                                             \
+    uint n[P];                                                                                      \
+    [unroll] for (uint j = 0; j < P; ++j) {                                                         \
+      lo[j] = 0xffffffffu;                                                                          \
+      hi[j] = 0u;                                                                                   \
+      n[j] = 0;                                                                                     \
+    }                                                                                               \
+    uint2 first = SdsmStripRow(group, gi);                                                          \
+    uint xEnd = SdsmStripRowEnd(group, gi);                                                         \
+    for (uint x = first.x; x < xEnd; ++x) {                                                         \
+      float d = cameraDepth.Load(int3(x, first.y, 0));                                              \
+      if (d < 1.0) {                                                                                \
+        float z = SdsmViewDepth(d);                                                                 \
+        uint p = 0;                                                                                 \
+        [unroll] for (uint i = 1; i < P; ++i) p = z >= split[i] ? i : p;                            \
+        float3 l = SdsmLightPosition(uint2(x, first.y), z);                                         \
+        uint3 key = uint3(SdsmOrderedKey(l.x), SdsmOrderedKey(l.y), SdsmOrderedKey(l.z));           \
+        [unroll] for (uint q = 0; q < P; ++q) {                                                     \
+          bool mine = p == q;                                                                       \
+          lo[q] = mine ? min(lo[q], key) : lo[q];                                                   \
+          hi[q] = mine ? max(hi[q], key) : hi[q];                                                   \
+          n[q] += mine ? 1u : 0u;                                                                   \
+        }                                                                                           \
+      }                                                                                             \
+    }                                                                                               \
+    [unroll] for (uint b = 0; b < P; ++b)                                                           \
+      if (n[b] != 0) MergeBox(b, lo[b], hi[b], n[b]);                                               \
+  }
+SDSM_BOUNDS_ROW(BoundsRow4, 4)
+SDSM_BOUNDS_ROW(BoundsRow8, SDSM_MAX_PARTITIONS)
+
 [numthreads(SDSM_STRIP, 1, 1)]
 void Bounds(uint3 group : SV_GroupID, uint gi : SV_GroupIndex) {
   uint K = clamp(partitionCount, 1u, uint(SDSM_MAX_PARTITIONS));
   for (uint w = gi; w < SDSM_MAX_PARTITIONS * 8; w += SDSM_STRIP) gsBox[w] = w % 8 < 3 ? 0xffffffffu : 0u;
   if (gi <= K) gsSplit[gi] = asfloat(results.Load((SDSM_W_SPLITS + gi) * 4));
   GroupMemoryBarrierWithGroupSync();
-  uint2 first = SdsmStripRow(group.xy, gi);
-  uint xEnd = SdsmStripRowEnd(group.xy, gi);
-  uint runP = 0, n = 0;
-  uint3 lo = 0xffffffffu, hi = 0u;
-  for (uint x = first.x; x < xEnd; ++x) {
-    float d = cameraDepth.Load(int3(x, first.y, 0));
-    if (d < 1.0) {
-      float z = SdsmViewDepth(d);
-      uint p = 0;
-      for (uint i = 1; i < K; ++i) p = z >= gsSplit[i] ? i : p;
-      if (p != runP) {
-        if (n != 0) MergeBox(runP, lo, hi, n);
-        runP = p;
-        n = 0;
-        lo = 0xffffffffu;
-        hi = 0u;
-      }
-      float3 l = SdsmLightPosition(uint2(x, first.y), z);
-      uint3 key = uint3(SdsmOrderedKey(l.x), SdsmOrderedKey(l.y), SdsmOrderedKey(l.z));
-      lo = min(lo, key);
-      hi = max(hi, key);
-      ++n;
-    }
-  }
-  if (n != 0) MergeBox(runP, lo, hi, n);
+  float split[SDSM_MAX_PARTITIONS];
+  [unroll] for (uint j = 0; j < SDSM_MAX_PARTITIONS; ++j) split[j] = j < K ? gsSplit[j] : SDSM_INFINITY;
+  if (K <= 4) BoundsRow4(group.xy, gi, split);
+  else BoundsRow8(group.xy, gi, split);
   GroupMemoryBarrierWithGroupSync();
   if (gi < K * 8 && gi % 8 != 7 && gsBox[(gi / 8) * 8 + 3] != 0) {
     uint slot = gi % 8, address = (SDSM_W_BOUNDS + gi) * 4, v = gsBox[gi], ignored;

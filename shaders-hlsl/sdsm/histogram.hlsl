@@ -35,15 +35,14 @@ void Histogram(uint3 group : SV_GroupID, uint gi : SV_GroupIndex) {
   for (uint b = gi; b < SDSM_BINS; b += SDSM_STRIP) gsHistogram[b] = 0;
   if (gi == 0) gsSamples = 0;
   GroupMemoryBarrierWithGroupSync();
-  float zMin = asfloat(results.Load(SDSM_W_MIN * 4));
-  float zMax = asfloat(results.Load(SDSM_W_MAX * 4));
+  SdsmBinRange range = SdsmHistogramRange(asfloat(results.Load(SDSM_W_MIN * 4)), asfloat(results.Load(SDSM_W_MAX * 4)));
   uint2 first = SdsmStripRow(group.xy, gi);
   uint xEnd = SdsmStripRowEnd(group.xy, gi);
   uint run = 0, runBin = 0, samples = 0;
   for (uint x = first.x; x < xEnd; ++x) {
     float d = cameraDepth.Load(int3(x, first.y, 0));
     if (d < 1.0) {
-      uint bin = SdsmHistogramBin(SdsmViewDepth(d), zMin, zMax);
+      uint bin = SdsmHistogramBin(SdsmViewDepth(d), range);
       if (bin != runBin) {
         if (run != 0) InterlockedAdd(gsHistogram[runBin], run);
         runBin = bin;
