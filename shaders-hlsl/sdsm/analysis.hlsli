@@ -96,9 +96,11 @@ uint SdsmHistogramBin(float z, SdsmBinRange r) {
 
 // A float's bits mapped to a uint whose unsigned order is the float order, negatives included
 // (so InterlockedMin/Max on the key is a float min/max).
+// (Negative: all bits flipped; otherwise the sign bit set. As one xor with the sign smeared by
+// an arithmetic shift: the bounds pass does this three times per pixel.)
 uint SdsmOrderedKey(float f) {
   uint u = asuint(f);
-  return (u & 0x80000000u) != 0 ? ~u : (u | 0x80000000u);
+  return u ^ (uint(asint(u) >> 31) | 0x80000000u);
 }
 float SdsmFromOrderedKey(uint k) {
   return asfloat((k & 0x80000000u) != 0 ? (k & 0x7fffffffu) : ~k);
