@@ -18,10 +18,10 @@ int RunSdsmCost(const Args& a) {
     if (!ParseBackend(which, &b)) throw std::invalid_argument("--backend must be vulkan, gl or both (got '" + which + "')");
     backends = {b};
   }
-  uint32_t frames = uint32_t(ParseCount(a.get("frames", "20"), "--frames", 1, 1000));
-  uint32_t warmup = uint32_t(ParseCount(a.get("warmup", "3"), "--warmup", 1, 100));
+  uint32_t frames = uint32_t(ParseCount(a.get("frames", "20"), "frames", 1, 1000));
+  uint32_t warmup = uint32_t(ParseCount(a.get("warmup", "3"), "warmup", 1, 100));
   std::vector<std::pair<uint32_t, uint32_t>> sizes;
-  for (const std::string& s : SplitList(a.get("size", "640x360"), "--size")) {
+  for (const std::string& s : SplitList(a.get("size", "640x360"), "size")) {
     uint32_t w, h;
     ParseSize(s, &w, &h);
     sizes.push_back({w, h});
