@@ -31,8 +31,8 @@ void MergeBox(uint p, uint3 lo, uint3 hi, uint n) {
 // selects are unrolled over a compile-time count (the boxes stay in registers, not in a
 // dynamically indexed array); `split` holds +inf past K, which no view depth reaches.
 // Per pixel this pass is arithmetic-bound on Mesa's CPU drivers (the light-space transform and
-// the selects; eval/experiments/sdsm-analysis-cost.sh): BoundsRow<4> serves K <= 4, the default,
-// at half the selects of BoundsRow<8>.
+// the selects; eval/experiments/sdsm-analysis-cost.sh): BoundsRow4 serves K <= 4, the default,
+// at half the selects of BoundsRow8.
 #define SDSM_BOUNDS_ROW(NAME, P)                                                                  \
   void NAME(uint2 group, uint gi, float split[SDSM_MAX_PARTITIONS]) {                              \
     uint3 lo[P], hi[P];                                                                             \
