@@ -55,6 +55,7 @@ int RunConformance(const Args& args);
 int RunBench(const Args& args);
 int RunReport(const Args& args);
 int RunAdvise(const Args& args);  // cli/advise.cpp
+int RunSdsmCost(const Args& args);  // cli/sdsm-cost.cpp
 
 // hlslc --survey DIR (cli/hlslc-survey.cpp): compiles every entry point of a shader tree and
 // writes a markdown report. Returns 0 when the survey ran, failures included; throws

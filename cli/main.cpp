@@ -41,6 +41,9 @@ void Help() {
       "          prints the front, the --technique line and C++, writes dir/index.html\n"
       "  conformance [--backend vulkan|gl|both] [--out dir] [--filter text] [--verbose]\n"
       "          runs the D3D11 conformance probes; prints the feature x backend table, writes Markdown and JSON\n"
+      "  sdsm-cost [--backend vulkan|gl|both] [--size WxH[,WxH...]] [--frames N] [--warmup N] [--validate]\n"
+      "          times each SDSM analysis pass on a synthetic depth buffer against a pass that reads it once\n"
+      "          (medians of N frames, default 20, after warm-up; first frame apart); prints Markdown tables\n"
       "  hlslc   file.hlsl -T vs_5_0|ps_5_0|cs_5_0 [-E entry] [-D NAME[=VALUE]] [-I dir] [-Fo out]\n"
       "          compiles HLSL like fxc: writes out.spv, out.glsl and out.json (reflection)\n"
       "  hlslc   --fx file.fx [-D NAME[=VALUE]] [-I dir]\n"
@@ -64,6 +67,7 @@ int main(int argc, char** argv) {
     if (cmd == "bench") return sp::cli::RunBench(sp::cli::Args(rest, {"validate"}));
     if (cmd == "report") return sp::cli::RunReport(sp::cli::Args(rest));
     if (cmd == "advise") return sp::cli::RunAdvise(sp::cli::Args(rest, {"exhaustive", "no-report"}));
+    if (cmd == "sdsm-cost") return sp::cli::RunSdsmCost(sp::cli::Args(rest, {"validate"}));
     if (cmd == "conformance") return sp::cli::RunConformance(sp::cli::Args(rest, {"verbose"}));
     std::fprintf(stderr, "shadowport: unknown command '%s'\n", cmd.c_str());
     Help();

@@ -12,6 +12,9 @@
 #define SDSM_MAX_PARTITIONS 8
 #define SDSM_TILE 16
 #define SDSM_GROUP_THREADS (SDSM_TILE * SDSM_TILE)
+// Passes that walk the depth buffer in strips: a group of SDSM_STRIP threads covers an
+// SDSM_STRIP x SDSM_STRIP tile, one row per thread (C++: kStripTile).
+#define SDSM_STRIP 64
 
 // The results buffer (RWByteAddressBuffer, 32-bit words).
 #define SDSM_W_MIN 0          // min view depth of non-sky pixels (float bits; +inf when none)
@@ -49,6 +52,15 @@ cbuffer SdsmAnalysis : register(b0) {
   uint kmeansIterations;
 };
 
+// Strip tiles: how many cover the depth buffer, and the pixels of thread gi's row of tile `group`
+// (x from SdsmStripRow(...).x to SdsmStripRowEnd(...), exclusive; an empty range below the
+// buffer's last row).
+uint2 SdsmStripTiles() { return (depthSize + SDSM_STRIP - 1) / SDSM_STRIP; }
+uint2 SdsmStripRow(uint2 group, uint gi) { return group * SDSM_STRIP + uint2(0, gi); }
+uint SdsmStripRowEnd(uint2 group, uint gi) {
+  return group.y * SDSM_STRIP + gi < depthSize.y ? min(group.x * SDSM_STRIP + SDSM_STRIP, depthSize.x) : 0;
+}
+
 float SdsmViewDepth(float d) {
   precise float z = depthA / (depthB - d);
   return z;
@@ -64,21 +76,31 @@ float3 SdsmLightPosition(uint2 pixel, float z) {
   return p;
 }
 
-// Histogram bin of view depth z over [log zMin, log zMax] (clamped to the end bins).
-uint SdsmHistogramBin(float z, float zMin, float zMax) {
-  float lmin = log(zMin);
-  float range = log(zMax) - lmin;
-  float scale = range > 0 ? float(SDSM_BINS) / range : 0.0;
-  float t = (log(z) - lmin) * scale;
+// Histogram bin of view depth z over [log zMin, log zMax] (clamped to the end bins), in two steps
+// so a pass computes the range's part once rather than per pixel.
+struct SdsmBinRange {
+  float lmin, scale;
+};
+SdsmBinRange SdsmHistogramRange(float zMin, float zMax) {
+  SdsmBinRange r;
+  r.lmin = log(zMin);
+  float range = log(zMax) - r.lmin;
+  r.scale = range > 0 ? float(SDSM_BINS) / range : 0.0;
+  return r;
+}
+uint SdsmHistogramBin(float z, SdsmBinRange r) {
+  float t = (log(z) - r.lmin) * r.scale;
   return min(uint(max(t, 0.0)), uint(SDSM_BINS - 1));
 }
 #endif  // SDSM_LAYOUT_ONLY
 
 // A float's bits mapped to a uint whose unsigned order is the float order, negatives included
 // (so InterlockedMin/Max on the key is a float min/max).
+// (Negative: all bits flipped; otherwise the sign bit set. As one xor with the sign smeared by
+// an arithmetic shift: the bounds pass does this three times per pixel.)
 uint SdsmOrderedKey(float f) {
   uint u = asuint(f);
-  return (u & 0x80000000u) != 0 ? ~u : (u | 0x80000000u);
+  return u ^ (uint(asint(u) >> 31) | 0x80000000u);
 }
 float SdsmFromOrderedKey(uint k) {
   return asfloat((k & 0x80000000u) != 0 ? (k & 0x7fffffffu) : ~k);

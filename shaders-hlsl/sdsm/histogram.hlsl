@@ -1,7 +1,7 @@
 // SDSM: resetting the analysis results, and the histogram of log view depth between the reduced
 // min and max (read from the results buffer on the GPU, so no readback sits between the passes).
-// Each 16x16 group counts into a groupshared histogram and adds its non-zero bins to the global
-// one, which keeps global atomics to at most one per bin and group.
+// Each group counts into a groupshared histogram and adds its non-zero bins to the global one,
+// which keeps global atomics to at most one per bin and group.
 //! cs_5_0 ResetResults
 //! cs_5_0 Histogram
 #include "sdsm/analysis.hlsli"
@@ -26,22 +26,36 @@ void ResetResults(uint i : SV_DispatchThreadID) {
 groupshared uint gsHistogram[SDSM_BINS];
 groupshared uint gsSamples;
 
-[numthreads(SDSM_TILE, SDSM_TILE, 1)]
-void Histogram(uint3 pixel : SV_DispatchThreadID, uint gi : SV_GroupIndex) {
-  for (uint b = gi; b < SDSM_BINS; b += SDSM_GROUP_THREADS) gsHistogram[b] = 0;
+// One SDSM_STRIP^2 tile per group, one row of it per thread. Neighbours along a row mostly share
+// a bin (a floor's row is one depth), so a thread counts a run of equal bins in a register and
+// adds it to the groupshared bin when the bin changes: a groupshared atomic per run, not per
+// pixel. Zeroing and flushing the groupshared bins is paid once per 4096 pixels, not per 256.
+[numthreads(SDSM_STRIP, 1, 1)]
+void Histogram(uint3 group : SV_GroupID, uint gi : SV_GroupIndex) {
+  for (uint b = gi; b < SDSM_BINS; b += SDSM_STRIP) gsHistogram[b] = 0;
   if (gi == 0) gsSamples = 0;
   GroupMemoryBarrierWithGroupSync();
-  float zMin = asfloat(results.Load(SDSM_W_MIN * 4));
-  float zMax = asfloat(results.Load(SDSM_W_MAX * 4));
-  if (all(pixel.xy < depthSize)) {
-    float d = cameraDepth.Load(int3(pixel.xy, 0));
+  SdsmBinRange range = SdsmHistogramRange(asfloat(results.Load(SDSM_W_MIN * 4)), asfloat(results.Load(SDSM_W_MAX * 4)));
+  uint2 first = SdsmStripRow(group.xy, gi);
+  uint xEnd = SdsmStripRowEnd(group.xy, gi);
+  uint run = 0, runBin = 0, samples = 0;
+  for (uint x = first.x; x < xEnd; ++x) {
+    float d = cameraDepth.Load(int3(x, first.y, 0));
     if (d < 1.0) {
-      InterlockedAdd(gsHistogram[SdsmHistogramBin(SdsmViewDepth(d), zMin, zMax)], 1u);
-      InterlockedAdd(gsSamples, 1u);
+      uint bin = SdsmHistogramBin(SdsmViewDepth(d), range);
+      if (bin != runBin) {
+        if (run != 0) InterlockedAdd(gsHistogram[runBin], run);
+        runBin = bin;
+        run = 0;
+      }
+      ++run;
+      ++samples;
     }
   }
+  if (run != 0) InterlockedAdd(gsHistogram[runBin], run);
+  if (samples != 0) InterlockedAdd(gsSamples, samples);
   GroupMemoryBarrierWithGroupSync();
-  for (uint c = gi; c < SDSM_BINS; c += SDSM_GROUP_THREADS) {
+  for (uint c = gi; c < SDSM_BINS; c += SDSM_STRIP) {
     uint n = gsHistogram[c];
     if (n != 0) InterlockedAdd(histogram[c], n);
   }

@@ -46,14 +46,14 @@ Ref<Buffer> StructuredBuffer(Device& device, uint32_t count, uint32_t stride, co
 
 AnalysisTraffic EstimateTraffic(uint32_t width, uint32_t height, ReduceMode mode, uint32_t bins) {
   AnalysisTraffic t;
-  uint64_t tiles = uint64_t(DivUp(width, kTile)) * DivUp(height, kTile);
+  uint64_t tiles = uint64_t(DivUp(width, kStripTile)) * DivUp(height, kStripTile);
   // Groups read every pixel of their tiles, edge tiles included only where inside the buffer.
   t.depthBufferBytes = uint64_t(width) * height * 4;
   t.reduceReadBytes = t.depthBufferBytes + (mode == ReduceMode::TwoPass ? tiles * 8 : 0);
   t.reduceWrittenBytes = mode == ReduceMode::TwoPass ? tiles * 8 + 8 : tiles * 8;
   // Every group also reads min/max (8 bytes), the bounds groups the splits (up to 36 bytes).
   t.histogramReadBytes = t.depthBufferBytes + tiles * 8;
-  t.histogramWrittenBytes = tiles * std::min(bins, kGroupThreads) * 4;  // a group has at most 256 samples
+  t.histogramWrittenBytes = tiles * std::min(bins, kStripTile * kStripTile) * 4;  // at most a bin per sample
   t.boundsReadBytes = t.depthBufferBytes + tiles * 36;
   return t;
 }
@@ -98,6 +98,8 @@ void DepthAnalysis::SetFrame(DeviceContext& ctx, const AnalysisFrame& f, const P
   tilesX_ = DivUp(f.width, kTile);
   tilesY_ = DivUp(f.height, kTile);
   if (tilesX_ > 65535 || tilesY_ > 65535) throw std::invalid_argument("DepthAnalysis: depth buffer too large");
+  stripsX_ = DivUp(f.width, kStripTile);
+  stripsY_ = DivUp(f.height, kStripTile);
   AnalysisConstants c{};
   c.depthSize[0] = f.width;
   c.depthSize[1] = f.height;
@@ -138,16 +140,16 @@ void DepthAnalysis::Reduce(DeviceContext& ctx, ShaderResourceView* depth, Reduce
   GpuTimer::Scope timed(timer, ctx, "analysis");
   ctx.CSSetShaderResources(0, {depth});
   if (mode == ReduceMode::TwoPass) {
-    EnsureTiles(tilesX_ * tilesY_);
+    EnsureTiles(stripsX_ * stripsY_);
     BindOutputs(ctx, tilesUav_.get());
     ctx.CSSetShader(reduceTiles_.get());
-    ctx.Dispatch(tilesX_, tilesY_, 1);
+    ctx.Dispatch(stripsX_, stripsY_, 1);
     ctx.CSSetShader(reduceFinal_.get());
     ctx.Dispatch(1, 1, 1);
   } else {
     BindOutputs(ctx, nullptr);
     ctx.CSSetShader(reduceAtomic_.get());
-    ctx.Dispatch(tilesX_, tilesY_, 1);
+    ctx.Dispatch(stripsX_, stripsY_, 1);
   }
 }
 
@@ -156,7 +158,7 @@ void DepthAnalysis::BuildHistogram(DeviceContext& ctx, ShaderResourceView* depth
   ctx.CSSetShaderResources(0, {depth});
   BindOutputs(ctx, histogramUav_.get());
   ctx.CSSetShader(histogramCs_.get());
-  ctx.Dispatch(tilesX_, tilesY_, 1);
+  ctx.Dispatch(stripsX_, stripsY_, 1);
 }
 
 void DepthAnalysis::Partition(DeviceContext& ctx, GpuTimer* timer) {
@@ -171,7 +173,7 @@ void DepthAnalysis::ReduceBounds(DeviceContext& ctx, ShaderResourceView* depth, 
   ctx.CSSetShaderResources(0, {depth});
   BindOutputs(ctx, nullptr);
   ctx.CSSetShader(bounds_.get());
-  ctx.Dispatch(tilesX_, tilesY_, 1);
+  ctx.Dispatch(stripsX_, stripsY_, 1);
 }
 
 void DepthAnalysis::Unbind(DeviceContext& ctx) {

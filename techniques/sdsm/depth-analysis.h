@@ -4,9 +4,9 @@
 // there, so a frame's analysis needs no CPU readback:
 //
 //   Reset       results and histogram to their neutral values
-//   Reduce      min/max view depth of non-sky pixels (depth 1.0 = sky): groupshared tree per 16x16
-//               tile, then a second pass over the tiles (TwoPass) or InterlockedMin/Max on the
-//               float bits (Atomic)
+//   Reduce      min/max view depth of non-sky pixels (depth 1.0 = sky): per 64x64 tile (a thread
+//               per row, in registers), then a second pass over the tiles (TwoPass) or
+//               InterlockedMin/Max on the float bits (Atomic)
 //   Histogram   N bins of log view depth between that min and max
 //   Partition   K + 1 split distances by the chosen scheme (partitions.h)
 //   Bounds      light-space box of each partition's samples (analysis-frame.h for the light frame)
@@ -24,6 +24,9 @@
 namespace sp::tech::sdsm {
 
 enum class ReduceMode { TwoPass, Atomic };
+
+// SDSM_STRIP of shaders-hlsl/sdsm/analysis.hlsli.
+constexpr uint32_t kStripTile = 64;
 
 struct AnalysisSettings {
   ReduceMode reduce = ReduceMode::TwoPass;
@@ -69,6 +72,8 @@ class DepthAnalysis {
   ShaderResourceView* resultsSrv() const { return resultsSrv_.get(); }  // ByteAddressBuffer
   Buffer* histogram() const { return histogram_.get(); }                // histogramBins() uints
   uint32_t histogramBins() const { return bins_; }
+  // The b0 constants SetFrame wrote (for passes measured against the analysis, analysis-cost.h).
+  Buffer* constants() const { return constants_.get(); }
 
  private:
   void EnsureTiles(uint32_t count);
@@ -76,7 +81,7 @@ class DepthAnalysis {
 
   Device& device_;
   uint32_t bins_;
-  uint32_t width_ = 0, height_ = 0, tilesX_ = 0, tilesY_ = 0;
+  uint32_t width_ = 0, height_ = 0, tilesX_ = 0, tilesY_ = 0, stripsX_ = 0, stripsY_ = 0;
   Ref<Buffer> constants_, results_, histogram_, tiles_;
   Ref<UnorderedAccessView> resultsUav_, histogramUav_, tilesUav_;
   Ref<ShaderResourceView> resultsSrv_;
