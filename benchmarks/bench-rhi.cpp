@@ -8,6 +8,7 @@
 // the timing (PauseTiming), on both sides: lavapipe and llvmpipe execute the commands on their
 // own CPU threads, which thread CPU time does not count, and the targets are 64x64 so that their
 // execution stays small next to recording on a two-core machine.
+#include <cstdlib>
 #include <map>
 #include <memory>
 #include <string>
@@ -68,13 +69,16 @@ void Run(benchmark::State& state, CaseId id, sp::Backend backend, bool raw) {
 int main(int argc, char** argv) {
   using namespace spbench;
   benchmark::Initialize(&argc, argv);
+  // SPBENCH_ITERATIONS=N: more iterations, for profiling one case with perf.
+  const char* env = std::getenv("SPBENCH_ITERATIONS");
+  int iterations = env ? std::atoi(env) : 6;
   for (CaseId id : kCases)
     for (sp::Backend b : {sp::Backend::Vulkan, sp::Backend::OpenGL})
       for (bool raw : {true, false}) {
         std::string name = std::string(CaseName(id)) + "/" + sp::BackendName(b) + "/" + (raw ? "raw" : "sp");
         // A fixed iteration count keeps the run's length and work the same from run to run.
         benchmark::RegisterBenchmark(name.c_str(), [=](benchmark::State& s) { Run(s, id, b, raw); })
-            ->Iterations(6)
+            ->Iterations(iterations)
             ->Unit(benchmark::kMillisecond);
       }
   benchmark::RunSpecifiedBenchmarks();

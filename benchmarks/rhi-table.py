@@ -30,7 +30,8 @@ def main(path):
             order.append(key)
         rows[key][side] = per_draw
     ctx = data.get("context", {})
-    print(f"bench-rhi: CPU ns per draw (dispatch), {'median of ' + str(ctx.get('repetitions', '?')) + ' repetitions' if have_median else 'one run'};"
+    reps = max((b.get("repetitions", 1) for b in data["benchmarks"]), default=1)
+    print(f"bench-rhi: CPU ns per draw (dispatch), {'median of ' + str(reps) + ' repetitions' if have_median else 'one run'};"
           f" load average {', '.join(f'{x:.1f}' for x in ctx.get('load_avg', []))}")
     print(f"{'case':<9} {'backend':<7} {'sp ns':>10} {'raw ns':>10} {'sp/raw':>7}")
     for case, backend in order:
