@@ -55,9 +55,7 @@ GLContext::GLContext(GLDevice& dev) : dev_(dev) {
   glSamplerParameteri(loadSampler_, GL_TEXTURE_MIN_FILTER, GL_NEAREST_MIPMAP_NEAREST);
   glSamplerParameteri(loadSampler_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   glSamplerParameteri(loadSampler_, GL_TEXTURE_COMPARE_MODE, GL_NONE);
-  glCreateBuffers(1, &ring_);
-  ringSize_ = kRingSize;
-  glNamedBufferData(ring_, GLsizeiptr(ringSize_), nullptr, GL_STREAM_DRAW);
+  NewRing(kRingSize);
 }
 
 GLContext::~GLContext() {
@@ -264,7 +262,8 @@ void GLContext::BindUniformBlock(const Shader& shader, size_t index, const Buffe
   const CBufferInfo* info = shader.Reflection().FindCBuffer(b.registerIndex);
   const uint32_t declared = info ? info->size : 0;
   GLBuffer& gb = GL(buffer);  // not const: the repack may refresh its CPU copy
-  if (b.repack.empty() && gb.size >= declared) {
+  // DYNAMIC constant buffers always go through the ring: their contents live in `shadow`.
+  if (b.repack.empty() && gb.size >= declared && gb.usage != USAGE_DYNAMIC) {
     BindRange(GL_UNIFORM_BUFFER, b.glBinding, {gb.name, 0, GLsizeiptr(gb.size)});
     return;
   }
@@ -341,20 +340,31 @@ GLbitfield GLContext::BindStage(const PipelineState& s, ShaderStage stage) {
   return barrier;
 }
 
+// The ring is persistently mapped: a map and unmap per upload (one per Map WRITE_DISCARD of a
+// constant buffer) cost Mesa more than the draw. A full ring is replaced, not orphaned: draws still
+// reading the old buffer keep it alive after glDeleteBuffers, and new uploads go to fresh memory.
+void GLContext::NewRing(size_t size) {
+  if (ring_) {
+    ForgetBuffer(ring_);
+    glDeleteBuffers(1, &ring_);
+  }
+  const GLbitfield flags = GL_MAP_WRITE_BIT | GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT;
+  glCreateBuffers(1, &ring_);
+  glNamedBufferStorage(ring_, GLsizeiptr(size), nullptr, flags);
+  ringData_ = static_cast<uint8_t*>(glMapNamedBufferRange(ring_, 0, GLsizeiptr(size), flags));
+  ringSize_ = size;
+  ringCursor_ = 0;
+}
+
 GLintptr GLContext::UploadToRing(const void* data, size_t size) {
   const size_t align = size_t(std::max<GLint>(dev_.uboAlignment, 16));
   size_t offset = (ringCursor_ + align - 1) / align * align;
   if (offset + size > ringSize_) {
-    // Orphan: draws still reading the old storage keep it; new uploads go to fresh memory.
-    ringSize_ = std::max(ringSize_, size);
-    glNamedBufferData(ring_, GLsizeiptr(ringSize_), nullptr, GL_STREAM_DRAW);
+    NewRing(std::max(ringSize_, size));
     ++ringGeneration_;
     offset = 0;
   }
-  void* p = glMapNamedBufferRange(ring_, GLintptr(offset), GLsizeiptr(size),
-                                  GL_MAP_WRITE_BIT | GL_MAP_INVALIDATE_RANGE_BIT | GL_MAP_UNSYNCHRONIZED_BIT);
-  std::memcpy(p, data, size);
-  glUnmapNamedBuffer(ring_);
+  std::memcpy(ringData_ + offset, data, size);
   ringCursor_ = offset + size;
   return GLintptr(offset);
 }

@@ -195,7 +195,9 @@ class GLContext final : public detail::ContextBackend {
   GLuint loadSampler_ = 0;  // point sampler for Load/texelFetch and MS textures
   std::map<FramebufferKey, GLuint> framebuffers_;
   std::map<std::pair<GLuint, GLuint>, GLuint> pipelines_;  // (vs program, ps program) -> pipeline
+  void NewRing(size_t size);
   GLuint ring_ = 0;
+  uint8_t* ringData_ = nullptr;  // persistently mapped, coherent
   size_t ringSize_ = 0, ringCursor_ = 0;
   uint64_t ringGeneration_ = 0;
   GLuint indexScratch_ = 0;

@@ -80,6 +80,10 @@ struct GLBuffer : detail::BackendObject {
   // repack or a partial update needs it, so a GPU copy into a constant buffer does not wait.
   bool shadowStale = false;
   uint64_t version = 1;  // bumped on every write to a constant buffer
+  // A DYNAMIC constant buffer's writes (Map WRITE_DISCARD) stay in `shadow` and reach draws
+  // through the context's upload ring, one slice per version: orphaning `name` on every Unmap
+  // cost Mesa a reallocation per draw. `name` is brought up to date only when a copy reads it.
+  bool storageStale = false;
   GLStagingMemory staging;  // USAGE_STAGING: `name` is staging.buffer
   bool mappedGL = false;    // USAGE_DYNAMIC non-constant buffer mapped through GL
   ~GLBuffer() override;
@@ -87,6 +91,8 @@ struct GLBuffer : detail::BackendObject {
 
 // Brings a constant buffer's CPU copy up to date after GPU writes (CopyResource and friends).
 void RefreshShadow(GLBuffer& b);
+// Writes `shadow` into the GL storage of a constant buffer whose writes went to the ring only.
+void RefreshStorage(GLBuffer& b);
 
 struct SubresourceLayout {
   uint64_t offset = 0;

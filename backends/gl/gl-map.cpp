@@ -2,7 +2,7 @@
 //  - STAGING: persistently mapped memory; Map waits (fence) for the GPU commands that use it.
 //  - DYNAMIC buffers: WRITE_DISCARD orphans the storage (draws in flight keep the old one),
 //    NO_OVERWRITE maps unsynchronised, in place. Constant buffers are written through their CPU
-//    copy and uploaded (orphaning) on Unmap.
+//    copy; draws read it from the upload ring (see GLBuffer::storageStale).
 //  - DYNAMIC textures: CPU memory laid out as D3D maps it, uploaded on Unmap.
 #include <cstring>
 
@@ -67,13 +67,12 @@ void GLContext::Unmap(Resource* r, uint32_t sub) {
     GLBuffer& b = GL(static_cast<Buffer*>(r));
     if (b.usage != USAGE_DYNAMIC) return;
     if (b.constant) {
-      // Fresh storage first (Mesa turns a same-size glBufferData with data into an in-place
-      // write, which waits for draws still reading the buffer), then the new contents.
-      glNamedBufferData(b.name, b.size, nullptr, GL_DYNAMIC_DRAW);
-      glNamedBufferSubData(b.name, 0, b.size, b.shadow.data());
       b.shadowStale = false;
       ++b.version;
-    } else if (b.mappedGL) {
+      b.storageStale = true;  // bound through the upload ring (GLContext::BindUniformBlock)
+      return;
+    }
+    if (b.mappedGL) {
       glUnmapNamedBuffer(b.name);
       b.mappedGL = false;
     }

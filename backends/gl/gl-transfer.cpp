@@ -26,6 +26,8 @@ void EnsureD3DLayout(GLTexture& t, uint32_t sub) {
 }
 
 void CopyBufferRegion(GLBuffer& dst, uint32_t dstOffset, GLBuffer& src, uint32_t srcOffset, uint32_t size) {
+  RefreshStorage(src);
+  RefreshStorage(dst);
   glCopyNamedBufferSubData(src.name, dst.name, srcOffset, dstOffset, size);
   if (src.usage == USAGE_STAGING) src.staging.MarkGpuUse();
   if (dst.usage == USAGE_STAGING) dst.staging.MarkGpuUse();
@@ -131,6 +133,15 @@ void CopyTextureRegion(Texture* dst, uint32_t dstSub, uint32_t x, uint32_t y, ui
 }
 
 }  // namespace
+
+void RefreshStorage(GLBuffer& b) {
+  if (!b.storageStale) return;
+  // Fresh storage first (Mesa turns a same-size glBufferData with data into an in-place write,
+  // which waits for draws still reading the buffer), then the contents.
+  glNamedBufferData(b.name, b.size, nullptr, GL_DYNAMIC_DRAW);
+  glNamedBufferSubData(b.name, 0, b.size, b.shadow.data());
+  b.storageStale = false;
+}
 
 void RefreshShadow(GLBuffer& b) {
   if (!b.shadowStale) return;

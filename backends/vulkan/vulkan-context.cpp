@@ -2,6 +2,7 @@
 // change or a barrier is due), pipelines, dynamic state, vertex/index buffers and descriptors.
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "vulkan-internal.h"
 
@@ -103,26 +104,37 @@ void VulkanContext::BeginRendering(const PipelineState& s) {
 
 void VulkanContext::SetDynamicState(const PipelineState& s) {
   VkCommandBuffer cmd = cur_->cmd;
+  DynamicValues d;
   const VIEWPORT& v = s.viewports[0];
-  VkViewport vp{v.TopLeftX, v.TopLeftY, v.Width, v.Height, v.MinDepth, v.MaxDepth};
-  vkCmdSetViewportWithCount(cmd, 1, &vp);
+  d.viewport = {v.TopLeftX, v.TopLeftY, v.Width, v.Height, v.MinDepth, v.MaxDepth};
   const RASTERIZER_DESC& rd = s.rasterizer();
-  VkRect2D sc{{0, 0}, passExtent_};
+  d.scissor = {{0, 0}, passExtent_};
   if (rd.ScissorEnable) {
     const RECT& r = s.scissorRects[0];
     int32_t l = std::max(r.left, 0), t = std::max(r.top, 0);
     int32_t ri = std::max(r.right, l), b = std::max(r.bottom, t);
-    sc = {{l, t}, {uint32_t(ri - l), uint32_t(b - t)}};
+    d.scissor = {{l, t}, {uint32_t(ri - l), uint32_t(b - t)}};
   }
-  vkCmdSetScissorWithCount(cmd, 1, &sc);
   const PipelineState::DepthBias bias = s.depthBias(dev_->Info());
-  vkCmdSetDepthBiasEnable(cmd, bias.enable);
-  if (bias.enable) vkCmdSetDepthBias(cmd, bias.constant, bias.clamp, bias.slope);
-  vkCmdSetBlendConstants(cmd, s.blendFactor.data());
-  vkCmdSetStencilReference(cmd, VK_STENCIL_FACE_FRONT_AND_BACK, s.stencilRef & 0xff);
+  d.biasEnable = bias.enable;
+  d.bias = {bias.constant, bias.clamp, bias.slope};
+  std::copy(s.blendFactor.begin(), s.blendFactor.end(), d.blendFactor.begin());
+  d.stencilRef = s.stencilRef & 0xff;
   // D3D11 always cuts strips at the all-ones index.
-  bool strip = s.topology == PRIMITIVE_TOPOLOGY_TRIANGLESTRIP || s.topology == PRIMITIVE_TOPOLOGY_LINESTRIP;
-  vkCmdSetPrimitiveRestartEnable(cmd, strip);
+  d.strip = s.topology == PRIMITIVE_TOPOLOGY_TRIANGLESTRIP || s.topology == PRIMITIVE_TOPOLOGY_LINESTRIP;
+  // Only the values that changed are recorded: any state-object change brings us here, and every
+  // vkCmdSet* is an allocation in the driver's command stream (bench-rhi's state case).
+  const DynamicValues& o = lastDynamic_;
+  auto changed = [&](const auto& a, const auto& b) { return !dynamicStateValid_ || std::memcmp(&a, &b, sizeof(a)) != 0; };
+  if (changed(d.viewport, o.viewport)) vkCmdSetViewportWithCount(cmd, 1, &d.viewport);
+  if (changed(d.scissor, o.scissor)) vkCmdSetScissorWithCount(cmd, 1, &d.scissor);
+  if (changed(d.biasEnable, o.biasEnable)) vkCmdSetDepthBiasEnable(cmd, d.biasEnable);
+  // A bias recorded while disabled was not recorded at all: re-record it when enabling.
+  if (d.biasEnable && (changed(d.bias, o.bias) || !o.biasEnable)) vkCmdSetDepthBias(cmd, d.bias[0], d.bias[1], d.bias[2]);
+  if (changed(d.blendFactor, o.blendFactor)) vkCmdSetBlendConstants(cmd, d.blendFactor.data());
+  if (changed(d.stencilRef, o.stencilRef)) vkCmdSetStencilReference(cmd, VK_STENCIL_FACE_FRONT_AND_BACK, d.stencilRef);
+  if (changed(d.strip, o.strip)) vkCmdSetPrimitiveRestartEnable(cmd, d.strip);
+  lastDynamic_ = d;
   dynamicStateValid_ = true;
 }
 

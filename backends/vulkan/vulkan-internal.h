@@ -604,7 +604,17 @@ class VulkanContext final : public detail::ContextBackend {
   VkPipeline boundCompute_ = VK_NULL_HANDLE;
   std::array<StageDescriptors, 2> gfxSets_;  // VS (set 0), PS (set 1)
   StageDescriptors computeSet_;
-  bool dynamicStateValid_ = false;
+  bool dynamicStateValid_ = false;  // false: lastDynamic_ says nothing (new command buffer)
+  struct DynamicValues {
+    VkViewport viewport{};
+    VkRect2D scissor{};
+    VkBool32 biasEnable = VK_FALSE;
+    std::array<float, 3> bias{};  // constant, clamp, slope
+    std::array<float, 4> blendFactor{};
+    uint32_t stencilRef = 0;
+    VkBool32 strip = VK_FALSE;
+  };
+  DynamicValues lastDynamic_;
   std::vector<std::tuple<uint32_t, VkBuffer, VkDeviceSize, VkDeviceSize, VkDeviceSize>> boundVertex_;
   std::tuple<VkBuffer, VkDeviceSize, VkIndexType> boundIndex_{};
   VkPipeline currentPipeline_ = VK_NULL_HANDLE;
