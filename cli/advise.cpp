@@ -74,7 +74,7 @@ int RunAdvise(const Args& a) {
   o.scene = a.get("scene");
   o.path = a.get("path", "slow-pan");
   std::string backend = a.get("backend", "vulkan");
-  if (!ParseBackend(backend, &o.backend)) throw std::invalid_argument("--backend must be vulkan or gl (got '" + backend + "')");
+  o.backend = ParseRenderingBackend(backend, "vulkan or gl");
   ParseSize(a.get("size", "320x180"), &o.width, &o.height);
   o.frames = uint32_t(ParseCount(a.get("frames", "4"), "frames", 1, 1000));
   for (const std::string& b : a.getAll("budget")) {

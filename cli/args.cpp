@@ -7,6 +7,8 @@
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #include <stb_image_write.h>
 
+#include <sp/rhi/device.h>
+
 #include "cli.h"
 
 namespace sp::cli {
@@ -52,6 +54,14 @@ void Args::expectOnly(const std::vector<std::string>& known) const {
     for (const std::string& k : known) list += (list.empty() ? "--" : ", --") + k;
     throw std::invalid_argument("unknown option --" + name + " (valid: " + list + ")");
   }
+}
+
+Backend ParseRenderingBackend(const std::string& text, const std::string& valid) {
+  Backend b;
+  if (!ParseBackend(text, &b)) throw std::invalid_argument("--backend must be " + valid + " (got '" + text + "')");
+  if (b == Backend::Null)
+    throw std::invalid_argument("--backend null: the null backend draws nothing (it runs the validation tests without a driver); use " + valid);
+  return b;
 }
 
 void ParseSize(const std::string& text, uint32_t* w, uint32_t* h) {

@@ -23,9 +23,7 @@ int RunBench(const Args& a) {
   if (backend == "both") {
     o.backends = {Backend::Vulkan, Backend::OpenGL};
   } else {
-    Backend b;
-    if (!ParseBackend(backend, &b)) throw std::invalid_argument("--backend must be vulkan, gl or both (got '" + backend + "')");
-    o.backends = {b};
+    o.backends = {ParseRenderingBackend(backend, "vulkan, gl or both")};
   }
   ParseSize(a.get("size", "640x360"), &o.width, &o.height);
   o.frames = uint32_t(ParseCount(a.get("frames", "8"), "frames", 1, 100000));

@@ -6,6 +6,10 @@
 #include <string>
 #include <vector>
 
+namespace sp {
+enum class Backend : uint8_t;
+}
+
 namespace sp::cli {
 
 // Minimal argument reader: `--name value`, `--name=value`, repeated options, positionals.
@@ -25,6 +29,9 @@ class Args {
 };
 
 void ParseSize(const std::string& text, uint32_t* w, uint32_t* h);  // "1280x720"
+// --backend of a command that renders: vulkan or gl. "null" is refused with the reason (a null
+// device draws nothing), anything else naming `valid`, the values the command accepts.
+Backend ParseRenderingBackend(const std::string& text, const std::string& valid);
 std::map<std::string, std::string> ParseParams(const std::vector<std::string>& params);  // k=v
 void WritePng(const std::string& path, uint32_t w, uint32_t h, const uint8_t* rgba);
 // "a,b,c"; an empty item is an error naming --option.

@@ -33,8 +33,7 @@ RenderResult RenderOnce(const RenderJob& job) {
 
 static RenderJob JobFromArgs(const Args& a) {
   RenderJob job;
-  if (!ParseBackend(a.get("backend", "vulkan"), &job.backend))
-    throw std::invalid_argument("--backend must be vulkan or gl (got '" + a.get("backend") + "')");
+  job.backend = ParseRenderingBackend(a.get("backend", "vulkan"), "vulkan or gl");
   job.technique = a.get("technique", "basic");
   job.scene = a.get("scene", "default");
   ParseSize(a.get("size", "1280x720"), &job.width, &job.height);

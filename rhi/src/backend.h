@@ -123,9 +123,10 @@ struct DeviceAccess {
   static NullResources& Nulls(Device& d);  // made on first use
 };
 
-// Backend factories (backends/vulkan, backends/gl). `core` is the device being created; it has
-// no context yet.
+// Backend factories (backends/vulkan, backends/gl, backends/null). `core` is the device being
+// created; it has no context yet.
 std::unique_ptr<DeviceBackend> CreateVulkanBackend(Device& core, const DeviceDesc& desc);
 std::unique_ptr<DeviceBackend> CreateGLBackend(Device& core, const DeviceDesc& desc);
+std::unique_ptr<DeviceBackend> CreateNullBackend(Device& core, const DeviceDesc& desc);
 
 }  // namespace sp::detail

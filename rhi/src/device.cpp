@@ -11,7 +11,14 @@
 
 namespace sp {
 
-const char* BackendName(Backend b) { return b == Backend::Vulkan ? "vulkan" : "gl"; }
+const char* BackendName(Backend b) {
+  switch (b) {
+    case Backend::Vulkan: return "vulkan";
+    case Backend::OpenGL: return "gl";
+    case Backend::Null: return "null";
+  }
+  return "unknown";
+}
 
 bool ParseBackend(std::string_view s, Backend* out) {
   if (s == "vulkan" || s == "vk") {
@@ -20,6 +27,10 @@ bool ParseBackend(std::string_view s, Backend* out) {
   }
   if (s == "gl" || s == "opengl") {
     *out = Backend::OpenGL;
+    return true;
+  }
+  if (s == "null") {
+    *out = Backend::Null;
     return true;
   }
   return false;

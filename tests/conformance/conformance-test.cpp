@@ -1,9 +1,11 @@
 // Every conformance probe (eval/conformance/probes) as a test on each backend, with a fresh device
-// and validation on. A probe the driver cannot run is skipped with its reason.
+// and validation on. A probe the driver cannot run is skipped with its reason. The Misuse group
+// checks only what the core refuses, so it runs on the null backend as well.
 #include <gtest/gtest.h>
 
 #include <cctype>
 
+#include "backend-test.h"
 #include "conformance.h"
 
 namespace sp::test {
@@ -39,7 +41,7 @@ TEST_P(D3D11Conformance, Probe) {
 
 std::string ProbeTestName(const ::testing::TestParamInfo<std::tuple<Backend, size_t>>& info) {
   const conformance::Probe& p = Probes()[std::get<1>(info.param)];
-  std::string name = std::string(std::get<0>(info.param) == Backend::Vulkan ? "Vulkan" : "OpenGL") + "_" + p.group + "_" + p.name;
+  std::string name = BackendTestName(std::get<0>(info.param)) + "_" + p.group + "_" + p.name;
   for (char& c : name)
     if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
   return name;
@@ -48,6 +50,14 @@ std::string ProbeTestName(const ::testing::TestParamInfo<std::tuple<Backend, siz
 INSTANTIATE_TEST_SUITE_P(Probes, D3D11Conformance,
                          ::testing::Combine(::testing::Values(Backend::Vulkan, Backend::OpenGL), ::testing::Range(size_t(0), Probes().size())),
                          ProbeTestName);
+
+std::vector<std::tuple<Backend, size_t>> NullBackendProbes() {
+  std::vector<std::tuple<Backend, size_t>> out;
+  for (size_t i = 0; i < Probes().size(); ++i)
+    if (Probes()[i].group == "Misuse") out.emplace_back(Backend::Null, i);
+  return out;
+}
+INSTANTIATE_TEST_SUITE_P(NullProbes, D3D11Conformance, ::testing::ValuesIn(NullBackendProbes()), ProbeTestName);
 GTEST_ALLOW_UNINSTANTIATED_PARAMETERIZED_TEST(D3D11Conformance);
 
 }  // namespace

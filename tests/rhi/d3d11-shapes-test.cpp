@@ -655,7 +655,7 @@ TEST_P(D3D11ShapesTest, ImmediateContextThroughAnOutPointer) {
   }
 }
 
-SP_INSTANTIATE_BACKEND_TESTS(D3D11ShapesTest);
+SP_INSTANTIATE_VALIDATION_TESTS(D3D11ShapesTest);
 
 }  // namespace
 }  // namespace sp::test

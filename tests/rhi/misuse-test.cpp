@@ -50,7 +50,7 @@ TEST_P(MisuseTest, HazardUnbindsInputWhenBoundForOutput) {
   EXPECT_EQ(boundAt(0), dsrv);
 }
 
-SP_INSTANTIATE_BACKEND_TESTS(MisuseTest);
+SP_INSTANTIATE_VALIDATION_TESTS(MisuseTest);
 
 }  // namespace
 }  // namespace sp::test

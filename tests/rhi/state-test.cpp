@@ -331,31 +331,6 @@ TEST_P(StateTest, EmptyViewportDrawsNothing) {
   EXPECT_EQ(device().ValidationErrorCount(), 0u) << device().LastValidationError();
 }
 
-// One policy for a device without depth-bias clamping, in the core: a non-zero DepthBiasClamp is
-// refused when the state is made (GL used to refuse it at draw time, Vulkan to drop the clamp).
-TEST_P(StateTest, DepthBiasClampWithoutTheCapabilityIsRefusedWhenTheStateIsMade) {
-  EXPECT_TRUE(device().Info().depthBiasClamp) << "Mesa's drivers clamp depth bias";
-  DeviceDesc dd;
-  dd.backend = backend();
-  dd.disableDepthBiasClamp = true;
-  Ref<Device> dev = CreateDevice(dd);
-  EXPECT_FALSE(dev->Info().depthBiasClamp);
-  RASTERIZER_DESC rd;
-  rd.DepthBias = 100;
-  rd.SlopeScaledDepthBias = 1.0f;
-  EXPECT_NO_THROW(dev->CreateRasterizerState(rd));  // no clamp asked: fine
-  rd.DepthBiasClamp = 0.25f;
-  try {
-    dev->CreateRasterizerState(rd);
-    ADD_FAILURE() << "expected SP_NOT_SUPPORTED";
-  } catch (const Error& e) {
-    EXPECT_EQ(e.id(), ErrorId::NOT_SUPPORTED) << e.what();
-    EXPECT_NE(std::string(e.what()).find("DepthBiasClamp"), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("RasterizerState"), std::string::npos) << e.what();
-  }
-  EXPECT_NO_THROW(device().CreateRasterizerState(rd));  // the normal device has it
-}
-
 TEST_P(StateTest, VertexFormatsAndInstancing) {
   const char* src = R"(
 struct V { float4 pos : SV_Position; nointerpolation float4 color : COLOR; };
@@ -415,6 +390,36 @@ float4 PSMain(V v) : SV_Target { return v.color; }
 }
 
 SP_INSTANTIATE_BACKEND_TESTS(StateTest);
+
+// What the core refuses, without drawing: these run on the null backend too.
+class StateValidationTest : public BackendTest {};
+
+// One policy for a device without depth-bias clamping, in the core: a non-zero DepthBiasClamp is
+// refused when the state is made (GL used to refuse it at draw time, Vulkan to drop the clamp).
+TEST_P(StateValidationTest, DepthBiasClampWithoutTheCapabilityIsRefusedWhenTheStateIsMade) {
+  EXPECT_TRUE(device().Info().depthBiasClamp) << "Mesa's drivers clamp depth bias";
+  DeviceDesc dd;
+  dd.backend = backend();
+  dd.disableDepthBiasClamp = true;
+  Ref<Device> dev = CreateDevice(dd);
+  EXPECT_FALSE(dev->Info().depthBiasClamp);
+  RASTERIZER_DESC rd;
+  rd.DepthBias = 100;
+  rd.SlopeScaledDepthBias = 1.0f;
+  EXPECT_NO_THROW(dev->CreateRasterizerState(rd));  // no clamp asked: fine
+  rd.DepthBiasClamp = 0.25f;
+  try {
+    dev->CreateRasterizerState(rd);
+    ADD_FAILURE() << "expected SP_NOT_SUPPORTED";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.id(), ErrorId::NOT_SUPPORTED) << e.what();
+    EXPECT_NE(std::string(e.what()).find("DepthBiasClamp"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("RasterizerState"), std::string::npos) << e.what();
+  }
+  EXPECT_NO_THROW(device().CreateRasterizerState(rd));  // the normal device has it
+}
+
+SP_INSTANTIATE_VALIDATION_TESTS(StateValidationTest);
 
 }  // namespace
 }  // namespace sp::test

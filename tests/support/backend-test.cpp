@@ -8,8 +8,15 @@
 
 namespace sp::test {
 
-std::string BackendParamName(const ::testing::TestParamInfo<Backend>& info) {
-  return info.param == Backend::Vulkan ? "Vulkan" : "OpenGL";
+std::string BackendParamName(const ::testing::TestParamInfo<Backend>& info) { return BackendTestName(info.param); }
+
+std::string BackendTestName(Backend b) {
+  switch (b) {
+    case Backend::Vulkan: return "Vulkan";
+    case Backend::OpenGL: return "OpenGL";
+    case Backend::Null: return "Null";
+  }
+  return "Unknown";
 }
 
 void BackendTest::SetUp() {

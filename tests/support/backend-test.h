@@ -45,11 +45,18 @@ class ScopedEnv {
   std::optional<std::string> old_;
 };
 
-// Name printer so tests read "Vulkan" / "OpenGL" instead of 0 / 1.
+// Name printer so tests read "Vulkan" / "OpenGL" / "Null" instead of 0 / 1 / 2.
+std::string BackendTestName(Backend b);
 std::string BackendParamName(const ::testing::TestParamInfo<Backend>& info);
 
 #define SP_INSTANTIATE_BACKEND_TESTS(Suite) \
   INSTANTIATE_TEST_SUITE_P(Backends, Suite, ::testing::Values(::sp::Backend::Vulkan, ::sp::Backend::OpenGL), ::sp::test::BackendParamName)
+
+// For suites that only check what the core accepts and refuses (error ids, messages, warnings,
+// bound state), never pixels: they run on the null backend as well, which needs no driver.
+#define SP_INSTANTIATE_VALIDATION_TESTS(Suite)                                                                              \
+  INSTANTIATE_TEST_SUITE_P(Backends, Suite, ::testing::Values(::sp::Backend::Vulkan, ::sp::Backend::OpenGL, ::sp::Backend::Null), \
+                           ::sp::test::BackendParamName)
 
 // Compiles HLSL given inline (cached in the build tree).
 ShaderBytecode CompileHlsl(const std::string& source, const std::string& target, const std::string& entry,

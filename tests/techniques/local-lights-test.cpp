@@ -113,9 +113,14 @@ TEST_P(LocalLightsTest, FloorUnderAPointAndASpotLightMatchesTheCpuLighting) {
   if (wrong) WritePng(TestOutputDir() / "local-lights.png", W, H, img.data());
 }
 
+SP_INSTANTIATE_BACKEND_TESTS(LocalLightsTest);
+
+// Bad input refused by name, no pixels checked: these run on the null backend too.
+class LocalLightsValidationTest : public LocalLightsTest {};
+
 // Scenes without local lights render as before (covered by every other technique test); scenes
 // with more lights than the lit pass holds, or a light it cannot shade, are refused by name.
-TEST_P(LocalLightsTest, RendererRefusesLightsItCannotShade) {
+TEST_P(LocalLightsValidationTest, RendererRefusesLightsItCannotShade) {
   scene::Scene s = LitFloor();
   for (uint32_t i = 0; i < tech::kMaxLocalLights; ++i) s.pointLights.push_back({{0, 1, 0}, {1, 1, 1}, 3.0f});
   try {
@@ -138,7 +143,7 @@ TEST_P(LocalLightsTest, RendererRefusesLightsItCannotShade) {
   EXPECT_THROW(MakeRenderer(s, 16, 16), std::invalid_argument);
 }
 
-SP_INSTANTIATE_BACKEND_TESTS(LocalLightsTest);
+SP_INSTANTIATE_VALIDATION_TESTS(LocalLightsValidationTest);
 
 }  // namespace
 }  // namespace sp::test

@@ -467,26 +467,6 @@ TEST_P(MomentMapsTest, DepthOutsideTheUnitRangeDoesNotSpreadBeyondTheBlur) {
   }
 }
 
-// Convert times its passes as "moments" and "blur" when given a timer, and checks its inputs.
-TEST_P(MomentMapsTest, ConvertTimesItsPassesAndRejectsBadInputs) {
-  std::vector<float> src(8 * 8 * 2, 0.5f);
-  Ref<Texture2D> source = Source(8, 8, 2, src);
-  auto maps = Make(Options("evsm4"), 8, 8, 2);
-  Ref<ShaderResourceView> srv = MomentMaps::MakeDepthSrv(device(), source.get());
-  tech::GpuTimer timer(device());
-  timer.BeginFrame(ctx());
-  maps->Convert(ctx(), srv.get(), {1.0f, 2.0f}, &timer);
-  timer.EndFrame(ctx());
-  std::vector<tech::FrameTimes> t = timer.Collect(ctx(), true);
-  ASSERT_EQ(t.size(), 1u);
-  EXPECT_TRUE(t[0].count("moments") && t[0].count("blur"));
-  EXPECT_THROW(maps->Convert(ctx(), srv.get(), {1.0f}), std::invalid_argument) << "one radius for two layers";
-  auto msaa = Make(Options("evsm4", {{"msaa", "4"}}), 8, 8, 2);
-  EXPECT_THROW(msaa->Convert(ctx(), srv.get(), {}), std::invalid_argument) << "single-sampled SRV for msaa=4";
-  // Texture with mips + blur temp: (64 + 16 + 4 + 1) texels x 2 layers x 16 bytes, plus 64 x 2 x 16.
-  EXPECT_EQ(maps->MemoryBytes(), uint64_t((64 + 16 + 4 + 1) * 2 * 16 + 64 * 2 * 16));
-}
-
 // Radii a GPU pass left in a buffer (here: written at creation, between unrelated words) blur
 // exactly as the same radii given on the CPU, including a layer of radius 0 (copied through);
 // the blur's constants hold them afterwards; bad regions are errors.
@@ -521,6 +501,31 @@ TEST_P(MomentMapsTest, RadiiFromAGpuBufferBlurAsTheSameRadiiFromTheCpu) {
 }
 
 SP_INSTANTIATE_BACKEND_TESTS(MomentMapsTest);
+
+// Bad input refused, no pixels checked: these run on the null backend too.
+class MomentMapsValidationTest : public MomentMapsTest {};
+
+// Convert times its passes as "moments" and "blur" when given a timer, and checks its inputs.
+TEST_P(MomentMapsValidationTest, ConvertTimesItsPassesAndRejectsBadInputs) {
+  std::vector<float> src(8 * 8 * 2, 0.5f);
+  Ref<Texture2D> source = Source(8, 8, 2, src);
+  auto maps = Make(Options("evsm4"), 8, 8, 2);
+  Ref<ShaderResourceView> srv = MomentMaps::MakeDepthSrv(device(), source.get());
+  tech::GpuTimer timer(device());
+  timer.BeginFrame(ctx());
+  maps->Convert(ctx(), srv.get(), {1.0f, 2.0f}, &timer);
+  timer.EndFrame(ctx());
+  std::vector<tech::FrameTimes> t = timer.Collect(ctx(), true);
+  ASSERT_EQ(t.size(), 1u);
+  EXPECT_TRUE(t[0].count("moments") && t[0].count("blur"));
+  EXPECT_THROW(maps->Convert(ctx(), srv.get(), {1.0f}), std::invalid_argument) << "one radius for two layers";
+  auto msaa = Make(Options("evsm4", {{"msaa", "4"}}), 8, 8, 2);
+  EXPECT_THROW(msaa->Convert(ctx(), srv.get(), {}), std::invalid_argument) << "single-sampled SRV for msaa=4";
+  // Texture with mips + blur temp: (64 + 16 + 4 + 1) texels x 2 layers x 16 bytes, plus 64 x 2 x 16.
+  EXPECT_EQ(maps->MemoryBytes(), uint64_t((64 + 16 + 4 + 1) * 2 * 16 + 64 * 2 * 16));
+}
+
+SP_INSTANTIATE_VALIDATION_TESTS(MomentMapsValidationTest);
 
 }  // namespace
 }  // namespace sp::test

@@ -27,8 +27,10 @@ class NullResources;
 struct DeviceAccess;
 }  // namespace detail
 
-enum class Backend : uint8_t { Vulkan, OpenGL };
-const char* BackendName(Backend b);       // "vulkan", "gl"
+// Null: no driver and no GPU work; every call is validated by the core and then dropped (see
+// backends/null/null-internal.h). For validation and misuse tests, not for pictures.
+enum class Backend : uint8_t { Vulkan, OpenGL, Null };
+const char* BackendName(Backend b);       // "vulkan", "gl", "null"
 bool ParseBackend(std::string_view s, Backend* out);
 
 using MessageCallback = std::function<void(MessageSeverity, std::string_view)>;
