@@ -28,11 +28,9 @@ GLenum Topology(PRIMITIVE_TOPOLOGY t) {
   }
 }
 
-bool UsesSource1(BLEND b) { return b == BLEND_SRC1_COLOR || b == BLEND_INV_SRC1_COLOR || b == BLEND_SRC1_ALPHA || b == BLEND_INV_SRC1_ALPHA; }
-
 bool NeedsDualSource(const PipelineState& s) {
   const RENDER_TARGET_BLEND_DESC& rt = s.blend().RenderTarget[0];
-  return rt.BlendEnable && (UsesSource1(rt.SrcBlend) || UsesSource1(rt.DestBlend) || UsesSource1(rt.SrcBlendAlpha) || UsesSource1(rt.DestBlendAlpha));
+  return rt.BlendEnable && BlendReadsSource1(rt);
 }
 
 template <class T, size_t N, class Pred>

@@ -136,7 +136,7 @@ void GLDevice::Init(const DeviceDesc& desc) {
   if (desc.disableDepthBiasClamp) polygonOffsetClamp = nullptr;
   info_.depthBiasClamp = polygonOffsetClamp != nullptr;
   hasFilterMinmax = HasExtension("GL_ARB_texture_filter_minmax") || HasExtension("GL_EXT_texture_filter_minmax");
-  // The GLSL of such a vertex shader requires this extension by name (hlsl/glsl.cpp).
+  // The GLSL of such a vertex shader requires this extension by name (hlsl/target-glsl.cpp).
   info_.vsRenderTargetArrayIndex = !desc.disableVsRenderTargetArrayIndex && HasExtension("GL_ARB_shader_viewport_layer_array");
   glGetIntegerv(GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT, &ssboAlignment);
   glGetIntegerv(GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT, &uboAlignment);

@@ -1,8 +1,8 @@
 // Shaders: one separable program per shader (glCreateShaderProgramv), combined per draw into
 // program pipelines by the context. A GLSL compile or link failure is an sp::Error naming the
-// shader, with the driver's log.
+// shader, with the driver's log. The GLSL and its variants come made with the bytecode
+// (rhi/src/hlsl/target-glsl.cpp).
 #include <cstring>
-#include <regex>
 
 #include "gl-context.h"
 
@@ -71,8 +71,7 @@ std::unique_ptr<detail::BackendObject> CreateGLShader(GLDevice& dev, Shader& sha
   if (shader.Bytecode().glsl.empty())
     ThrowError(ErrorId::SHADER_COMPILE_FAILED, call, shader.Bytecode().sourceName, "the bytecode carries no GLSL for the OpenGL backend");
   s->program = Compile(dev, shader, shader.Bytecode().glsl, call);
-  if (shader.Stage() == ShaderStage::Pixel)
-    for (const SignatureElement& o : shader.Reflection().outputs) s->writesTarget1 |= o.semanticName == "SV_TARGET" && o.semanticIndex == 1;
+  s->writesTarget1 = !detail::TargetsOf(shader.Bytecode()).gl.dualSourceGlsl.empty();
   if (shader.Stage() == ShaderStage::Compute) {
     glCreateProgramPipelines(1, &s->computePipeline);
     glUseProgramStages(s->computePipeline, GL_COMPUTE_SHADER_BIT, s->program);
@@ -80,12 +79,11 @@ std::unique_ptr<detail::BackendObject> CreateGLShader(GLDevice& dev, Shader& sha
   return s;
 }
 
-// D3D's dual-source blending reads SV_Target1 as the second source of target 0; GL needs that
-// output declared at location 0, index 1. Made on first use, when a blend state asks for it.
+// The program of the GLSL variant with SV_Target1 at location 0, index 1 (pixel shaders writing
+// SV_Target1 only). Created on first use, when a blend state asks for dual-source blending.
 GLuint DualSourceProgram(GLDevice& dev, GLShader& shader) {
   if (shader.dualSourceProgram) return shader.dualSourceProgram;
-  static const std::regex target1(R"(layout\(location = 1\) out )");
-  std::string glsl = std::regex_replace(shader.owner->Bytecode().glsl, target1, "layout(location = 0, index = 1) out ");
+  const std::string& glsl = detail::TargetsOf(shader.owner->Bytecode()).gl.dualSourceGlsl;
   shader.dualSourceProgram = Compile(dev, *shader.owner, glsl, "Draw (dual-source blending)");
   return shader.dualSourceProgram;
 }

@@ -268,27 +268,6 @@ struct VkSamplerObj final : detail::BackendObject {
   ~VkSamplerObj() override;
 };
 
-// A cbuffer whose SPIR-V layout differs from HLSL packing: byte ranges from the D3D11-packed
-// buffer to the SPIR-V block (vulkan-cbuffer.cpp).
-struct CopyRange {
-  uint32_t src = 0, dst = 0, size = 0;
-};
-struct CBufferRepack {
-  uint32_t reg = 0;   // bN
-  uint32_t size = 0;  // bytes of the SPIR-V block
-  std::vector<CopyRange> ranges;
-};
-std::vector<CBufferRepack> ComputeCBufferRepacks(const std::vector<uint32_t>& spirv);
-
-// A texture and a sampler used together, and how: D3D11 lets any texture be filtered and compared,
-// Vulkan only formats with the matching features (checked at draw time).
-struct SampledPair {
-  uint32_t textureReg = 0, samplerReg = 0;
-  bool filtered = false;  // Sample* without comparison
-  bool compared = false;  // SampleCmp*, GatherCmp*
-};
-std::vector<SampledPair> SpirvSampledPairs(const std::vector<uint32_t>& spirv);
-
 struct ShaderBinding {
   uint32_t binding = 0;
   VkDescriptorType type = VK_DESCRIPTOR_TYPE_MAX_ENUM;
@@ -302,7 +281,7 @@ struct VkShaderObj final : detail::BackendObject {
   const Shader* owner = nullptr;
   uint64_t uid = 0;
   ShaderStage stage = ShaderStage::Vertex;
-  std::vector<uint32_t> spirv;  // what `module` was made from (vertex shaders: InstanceID patched)
+  bool instanceFromZero = false;  // `module` is the SV_InstanceID-from-0 variant (vertex shaders)
   VkShaderModule module = VK_NULL_HANDLE;
   VkShaderModule dualSourceModule = VK_NULL_HANDLE;  // SV_Target1 moved to location 0 index 1
   VkShaderModule pointSizeModule = VK_NULL_HANDLE;   // writes PointSize = 1 (D3D11 points)
@@ -310,6 +289,7 @@ struct VkShaderObj final : detail::BackendObject {
   std::vector<ShaderBinding> bindings;
   VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
   VkPipelineLayout computeLayout = VK_NULL_HANDLE;
+  // From the bytecode's SPIR-V products (rhi/src/hlsl/target-spirv.cpp).
   std::vector<CBufferRepack> repacks;
   std::vector<SampledPair> sampledPairs;
   const CBufferRepack* RepackFor(uint32_t reg) const {
@@ -626,13 +606,5 @@ class VulkanContext final : public detail::ContextBackend {
   void StartSegment();
   void StopSegment();
 };
-
-// Internal SPIR-V utilities (vulkan-shader.cpp).
-std::string SpirvEntryPoint(const std::vector<uint32_t>& spirv);
-std::vector<uint32_t> SpirvDualSource(const std::vector<uint32_t>& spirv);
-// Vulkan needs PointSize written for point lists; D3D11 points are always one pixel.
-std::vector<uint32_t> SpirvWritePointSize(const std::vector<uint32_t>& spirv);
-// SV_InstanceID = InstanceIndex - BaseInstance, as D3D11 counts instances from 0.
-std::vector<uint32_t> SpirvInstanceIdFromZero(const std::vector<uint32_t>& spirv);
 
 }  // namespace sp::vk

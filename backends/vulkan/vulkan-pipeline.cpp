@@ -41,8 +41,6 @@ VkBlendFactor Factor(BLEND b) {
   return VK_BLEND_FACTOR_ONE;
 }
 
-bool UsesSrc1(BLEND b) { return b == BLEND_SRC1_COLOR || b == BLEND_INV_SRC1_COLOR || b == BLEND_SRC1_ALPHA || b == BLEND_INV_SRC1_ALPHA; }
-
 VkBlendOp Op(BLEND_OP o) {
   switch (o) {
     case BLEND_OP_SUBTRACT: return VK_BLEND_OP_SUBTRACT;
@@ -149,7 +147,7 @@ VkPipeline VulkanContext::GraphicsPipeline(const PipelineState& s, VkPipelineLay
       b.srcAlphaBlendFactor = Factor(rt.SrcBlendAlpha);
       b.dstAlphaBlendFactor = Factor(rt.DestBlendAlpha);
       b.alphaBlendOp = Op(rt.BlendOpAlpha);
-      if (i == 0) dualSource = UsesSrc1(rt.SrcBlend) || UsesSrc1(rt.DestBlend) || UsesSrc1(rt.SrcBlendAlpha) || UsesSrc1(rt.DestBlendAlpha);
+      if (i == 0) dualSource = BlendReadsSource1(rt);
     }
   }
   if (dualSource && !dev_->feat.dualSrcBlend) Throw(ErrorId::NOT_SUPPORTED, call, "BlendState", "dual-source blending (SRC1 factors) needs dualSrcBlend, which this device lacks");

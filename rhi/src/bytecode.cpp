@@ -170,6 +170,96 @@ std::vector<SignatureElement> SignatureFromJson(const json& a) {
   return v;
 }
 
+// SPIR-V variants travel in the JSON (the cache keeps three files per shader) as base64 words.
+constexpr char kBase64[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+
+std::string WordsToBase64(const std::vector<uint32_t>& words) {
+  std::string bytes(words.size() * 4, '\0');
+  std::memcpy(bytes.data(), words.data(), bytes.size());
+  std::string out;
+  out.reserve((bytes.size() + 2) / 3 * 4);
+  for (size_t i = 0; i < bytes.size(); i += 3) {
+    uint32_t n = uint32_t(uint8_t(bytes[i])) << 16;
+    if (i + 1 < bytes.size()) n |= uint32_t(uint8_t(bytes[i + 1])) << 8;
+    if (i + 2 < bytes.size()) n |= uint8_t(bytes[i + 2]);
+    out += kBase64[(n >> 18) & 63];
+    out += kBase64[(n >> 12) & 63];
+    out += i + 1 < bytes.size() ? kBase64[(n >> 6) & 63] : '=';
+    out += i + 2 < bytes.size() ? kBase64[n & 63] : '=';
+  }
+  return out;
+}
+
+std::vector<uint32_t> WordsFromBase64(const std::string& text) {
+  std::string bytes;
+  uint32_t n = 0;
+  int bits = 0;
+  for (char ch : text) {
+    if (ch == '=') break;
+    const char* at = std::strchr(kBase64, ch);
+    if (!at || !ch) throw Error(ErrorId::INVALID_ARGUMENT, "ShaderBytecode::Deserialize", "SPIR-V variant", "not base64");
+    n = (n << 6) | uint32_t(at - kBase64);
+    bits += 6;
+    if (bits >= 8) {
+      bits -= 8;
+      bytes += char((n >> bits) & 0xff);
+    }
+  }
+  if (bytes.size() % 4) throw Error(ErrorId::INVALID_ARGUMENT, "ShaderBytecode::Deserialize", "SPIR-V variant", "not a whole number of words");
+  std::vector<uint32_t> words(bytes.size() / 4);
+  std::memcpy(words.data(), bytes.data(), bytes.size());
+  return words;
+}
+
+using VariantField = std::vector<uint32_t> detail::SpirvProducts::*;
+const std::pair<const char*, VariantField> kVariantFields[] = {
+    {"instanceFromZero", &detail::SpirvProducts::instanceFromZero},
+    {"pointSize", &detail::SpirvProducts::pointSize},
+    {"pointSizeInstanceFromZero", &detail::SpirvProducts::pointSizeInstanceFromZero},
+    {"dualSource", &detail::SpirvProducts::dualSource}};
+
+json RangesToJson(const std::vector<CBufferCopyRange>& ranges) {
+  json rp = json::array();
+  for (const CBufferCopyRange& c : ranges) rp.push_back({c.src, c.dst, c.size});
+  return rp;
+}
+
+std::vector<CBufferCopyRange> RangesFromJson(const json& a) {
+  std::vector<CBufferCopyRange> out;
+  for (const json& c : a) out.push_back({c.at(0).get<uint32_t>(), c.at(1).get<uint32_t>(), c.at(2).get<uint32_t>()});
+  return out;
+}
+
+json SpirvProductsToJson(const detail::SpirvProducts& p) {
+  json j;
+  j["entryPoint"] = p.entryPoint;
+  json repacks = json::array();
+  for (const CBufferRepack& r : p.repacks)
+    repacks.push_back({{"register", "b" + std::to_string(r.reg)}, {"size", r.size}, {"ranges", RangesToJson(r.ranges)}});
+  j["repacks"] = repacks;
+  json pairs = json::array();
+  for (const SampledPair& s : p.sampledPairs)
+    pairs.push_back({{"texture", "t" + std::to_string(s.textureReg)}, {"sampler", "s" + std::to_string(s.samplerReg)}, {"filtered", s.filtered}, {"compared", s.compared}});
+  j["sampledPairs"] = pairs;
+  for (const auto& [name, field] : kVariantFields)
+    if (!(p.*field).empty()) j["variants"][name] = WordsToBase64(p.*field);
+  return j;
+}
+
+detail::SpirvProducts SpirvProductsFromJson(const json& j) {
+  detail::SpirvProducts p;
+  p.entryPoint = j.at("entryPoint").get<std::string>();
+  for (const json& r : j.at("repacks"))
+    p.repacks.push_back({uint32_t(std::stoul(r.at("register").get<std::string>().substr(1))), r.at("size").get<uint32_t>(), RangesFromJson(r.at("ranges"))});
+  for (const json& s : j.at("sampledPairs"))
+    p.sampledPairs.push_back({uint32_t(std::stoul(s.at("texture").get<std::string>().substr(1))), uint32_t(std::stoul(s.at("sampler").get<std::string>().substr(1))),
+                              s.at("filtered").get<bool>(), s.at("compared").get<bool>()});
+  if (j.contains("variants"))
+    for (const auto& [name, field] : kVariantFields)
+      if (j["variants"].contains(name)) p.*field = WordsFromBase64(j["variants"][name].get<std::string>());
+  return p;
+}
+
 }  // namespace
 
 std::string BytecodeToJson(const ShaderBytecode& b, const json& extra) {
@@ -216,13 +306,14 @@ std::string BytecodeToJson(const ShaderBytecode& b, const json& extra) {
     if (g.uavCounter) e["uavCounter"] = true;
     if (g.kind == GlBindingKind::UniformBlock && !g.repack.empty()) {
       e["std140Size"] = g.glBlockSize;
-      json rp = json::array();
-      for (const GlCopyRange& c : g.repack) rp.push_back({c.src, c.dst, c.size});
-      e["repack"] = rp;
+      e["repack"] = RangesToJson(g.repack);
     }
     gl.push_back(e);
   }
   j["glBindings"] = gl;
+  const detail::TargetProducts& targets = detail::TargetsOf(b);
+  if (!targets.gl.dualSourceGlsl.empty()) j["glDualSource"] = targets.gl.dualSourceGlsl;
+  j["vulkan"] = SpirvProductsToJson(targets.spirv);
   for (auto it = extra.begin(); it != extra.end(); ++it) j[it.key()] = it.value();
   return j.dump(2);
 }
@@ -265,7 +356,8 @@ ShaderBytecode BytecodeFromJson(const std::string& text, std::vector<uint32_t> s
   }
   r.inputs = SignatureFromJson(j.at("inputs"));
   r.outputs = SignatureFromJson(j.at("outputs"));
-  std::vector<GlBinding> glBindings;
+  detail::TargetProducts targets;
+  std::vector<GlBinding>& glBindings = targets.gl.bindings;
   for (const json& e : j.at("glBindings")) {
     GlBinding g;
     g.kind = ValueOf(kGlKindNames, e.at("kind").get<std::string>());
@@ -277,11 +369,13 @@ ShaderBytecode BytecodeFromJson(const std::string& text, std::vector<uint32_t> s
     if (e.contains("uavCounter")) g.uavCounter = e["uavCounter"].get<bool>();
     if (e.contains("repack")) {
       g.glBlockSize = e.at("std140Size").get<uint32_t>();
-      for (const json& c : e["repack"]) g.repack.push_back({c[0].get<uint32_t>(), c[1].get<uint32_t>(), c[2].get<uint32_t>()});
+      g.repack = RangesFromJson(e["repack"]);
     }
     glBindings.push_back(std::move(g));
   }
-  detail::SetGlBindings(b, std::move(glBindings));
+  if (j.contains("glDualSource")) targets.gl.dualSourceGlsl = j["glDualSource"].get<std::string>();
+  targets.spirv = SpirvProductsFromJson(j.at("vulkan"));
+  detail::SetTargets(b, std::move(targets));
   b.spirv = std::move(spirv);
   b.glsl = std::move(glsl);
   if (extra) *extra = j;
@@ -293,7 +387,8 @@ std::string ShaderBytecode::ReflectionJson() const { return BytecodeToJson(*this
 // Blob layout: "SPBC", version, then three length-prefixed sections: reflection JSON, SPIR-V
 // words, GLSL text. Little-endian, as every platform ShadowPort runs on.
 static constexpr uint32_t kMagic = 0x43425053;  // "SPBC"
-static constexpr uint32_t kVersion = 1;
+// Version 2: the reflection JSON carries the per-target products (its "vulkan" section).
+static constexpr uint32_t kVersion = 2;
 
 std::vector<uint8_t> ShaderBytecode::Serialize() const {
   std::string js = ReflectionJson();
@@ -355,16 +450,23 @@ ShaderBytecode ShaderBytecode::Deserialize(const void* data, size_t size) {
 
 namespace detail {
 
-const std::vector<GlBinding>& GlBindingsOf(const ShaderBytecode& b) {
-  static const std::vector<GlBinding> kNone;
-  return b.glLayout ? b.glLayout->bindings : kNone;
+const TargetProducts& TargetsOf(const ShaderBytecode& b) {
+  static const TargetProducts kNone;
+  return b.glLayout ? *b.glLayout : kNone;
 }
 
-void SetGlBindings(ShaderBytecode& b, std::vector<GlBinding> bindings) {
-  auto layout = std::make_shared<GlProgramLayout>();
-  layout->bindings = std::move(bindings);
-  b.glLayout = std::move(layout);
+void SetTargets(ShaderBytecode& b, TargetProducts products) { b.glLayout = std::make_shared<const TargetProducts>(std::move(products)); }
+
+const std::vector<uint32_t>& SpirvFor(const ShaderBytecode& b, SpirvVariant v) {
+  const SpirvProducts& p = TargetsOf(b).spirv;
+  if (v.dualSource && !p.dualSource.empty()) return p.dualSource;
+  if (v.pointSize && v.instanceFromZero && !p.pointSizeInstanceFromZero.empty()) return p.pointSizeInstanceFromZero;
+  if (v.pointSize && !p.pointSize.empty()) return p.pointSize;
+  if (v.instanceFromZero && !p.instanceFromZero.empty()) return p.instanceFromZero;
+  return b.spirv;
 }
+
+const std::vector<GlBinding>& GlBindingsOf(const ShaderBytecode& b) { return TargetsOf(b).gl.bindings; }
 
 bool TextureIsCompared(const ShaderBytecode& b, uint32_t textureRegister) {
   for (const GlBinding& g : GlBindingsOf(b)) {

@@ -1,11 +1,15 @@
-// How D3D registers become Vulkan and OpenGL bindings (private to the library: the toolchain
-// writes these tables, the backends follow them, the core reads them to learn how a shader uses a
-// texture). Applications see only ShaderBytecode's opaque GL layout handle and the reflection.
+// How D3D registers become Vulkan and OpenGL bindings, and everything else a backend needs from a
+// shader (private to the library: the toolchain's target modules, rhi/src/hlsl/target-*.cpp,
+// write these products at compile time, the backends only create modules and programs from them,
+// the core reads them to learn how a shader uses a texture). Applications see only
+// ShaderBytecode's opaque `glLayout` handle and the reflection.
 #pragma once
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include <sp/rhi/shader.h>
+#include <sp/rhi/state.h>
 
 namespace sp {
 
@@ -25,9 +29,13 @@ inline uint32_t SetForStage(ShaderStage s) { return s == ShaderStage::Compute ? 
 // compiler, tells the GL backend where each D3D binding goes.
 enum class GlBindingKind : uint8_t { CombinedSampler, UniformBlock, StorageBlock, Image };
 
-struct GlCopyRange {
+// A cbuffer whose D3D11 packing the target's block layout cannot express is bound as a copy:
+// these byte ranges go from the D3D-packed buffer to the target's layout (one rule for both
+// targets, rhi/src/hlsl/target-cbuffer.cpp).
+struct CBufferCopyRange {
   uint32_t src = 0, dst = 0, size = 0;  // bytes
 };
+using GlCopyRange = CBufferCopyRange;
 
 struct GlBinding {
   GlBindingKind kind = GlBindingKind::CombinedSampler;
@@ -43,16 +51,75 @@ struct GlBinding {
   std::vector<GlCopyRange> repack;
 };
 
+// Vulkan: a cbuffer whose SPIR-V block layout differs from D3D11's packing (fxc places the member
+// after a matrix, array or struct in its last register's tail; SPIR-V block rules cannot).
+struct CBufferRepack {
+  uint32_t reg = 0;   // bN
+  uint32_t size = 0;  // bytes of the SPIR-V block
+  std::vector<CBufferCopyRange> ranges;
+};
+
+// A texture and a sampler used together, and how: D3D11 lets any texture be filtered and compared,
+// Vulkan only formats with the matching features (checked at draw time).
+struct SampledPair {
+  uint32_t textureReg = 0, samplerReg = 0;
+  bool filtered = false;  // Sample* without comparison
+  bool compared = false;  // SampleCmp*, GatherCmp*
+};
+
+// Which SPIR-V a Vulkan module is made from: the variants differ by D3D11 rules Vulkan needs
+// spelled out (rhi/src/hlsl/target-spirv.cpp).
+struct SpirvVariant {
+  bool instanceFromZero = false;  // SV_InstanceID counts from 0 (needs shaderDrawParameters)
+  bool pointSize = false;         // writes PointSize = 1 (point-list draws)
+  bool dualSource = false;        // SV_Target1 at location 0 index 1 (SRC1 blend factors)
+};
+
+// Whether a blend reads the pixel shader's second output (SRC1 factors): D3D11's dual-source
+// blending, which only render target 0 may use. Pixel shaders writing SV_Target1 come with a
+// variant for each target that makes it target 0's second source (SpirvFor, GlslProducts).
+inline bool BlendReadsSource1(const RENDER_TARGET_BLEND_DESC& rt) {
+  auto src1 = [](BLEND b) { return b == BLEND_SRC1_COLOR || b == BLEND_INV_SRC1_COLOR || b == BLEND_SRC1_ALPHA || b == BLEND_INV_SRC1_ALPHA; };
+  return src1(rt.SrcBlend) || src1(rt.DestBlend) || src1(rt.SrcBlendAlpha) || src1(rt.DestBlendAlpha);
+}
+
 namespace detail {
 
-// What ShaderBytecode::glLayout points at.
-struct GlProgramLayout {
-  std::vector<GlBinding> bindings;
+// What the Vulkan backend gets (rhi/src/hlsl/target-spirv.cpp). A variant left empty is the same
+// code as the one it derives from.
+struct SpirvProducts {
+  std::string entryPoint;
+  std::vector<CBufferRepack> repacks;
+  std::vector<SampledPair> sampledPairs;
+  std::vector<uint32_t> instanceFromZero;           // vertex shaders reading SV_InstanceID
+  std::vector<uint32_t> pointSize;                  // vertex shaders
+  std::vector<uint32_t> pointSizeInstanceFromZero;  // vertex shaders reading SV_InstanceID
+  std::vector<uint32_t> dualSource;                 // pixel shaders writing SV_Target1
 };
+
+// What the GL backend gets besides ShaderBytecode::glsl (rhi/src/hlsl/target-glsl.cpp).
+struct GlslProducts {
+  std::vector<GlBinding> bindings;
+  std::string dualSourceGlsl;  // pixel shaders writing SV_Target1: SV_Target1 at location 0 index 1
+};
+
+// Every target's products. The public header still calls it GlProgramLayout and the field
+// ShaderBytecode::glLayout, from when it held the GL binding table only; left so the installed
+// interface (and everything built against it) does not change.
+struct GlProgramLayout {
+  SpirvProducts spirv;
+  GlslProducts gl;
+};
+using TargetProducts = GlProgramLayout;
+
+const TargetProducts& TargetsOf(const ShaderBytecode& bytecode);  // empty products when none
+void SetTargets(ShaderBytecode& bytecode, TargetProducts products);
+
+// The code of a Vulkan module for `variant` (falls back along the variants left empty).
+const std::vector<uint32_t>& SpirvFor(const ShaderBytecode& bytecode, SpirvVariant variant);
 
 // The GL binding table of a shader (empty when it has none).
 const std::vector<GlBinding>& GlBindingsOf(const ShaderBytecode& bytecode);
-void SetGlBindings(ShaderBytecode& bytecode, std::vector<GlBinding> bindings);
 
 // Whether the shader reads texture register tN through a comparison sampler (SampleCmp,
 // GatherCmp): the combined samplers of the GL table name each (texture, sampler) pair.

@@ -642,9 +642,13 @@ ShaderBytecode CompileSource(std::string_view sourceView, const std::string& fil
   b.reflection = Reflect(spirv, stage, entry, name);
   b.spirv = StripHlslDecorations(spirv, name);
   Validate(b.spirv, fileName, name);
+  // Everything backend-specific, once per target (target-glsl.cpp, target-spirv.cpp).
   GlslOutput glsl = CrossCompileToGlsl(b.spirv, b.reflection, name);
   b.glsl = std::move(glsl.glsl);
-  detail::SetGlBindings(b, std::move(glsl.bindings));
+  detail::TargetProducts targets;
+  targets.gl = std::move(glsl.products);
+  targets.spirv = MakeSpirvProducts(b.spirv, b.reflection, name);
+  detail::SetTargets(b, std::move(targets));
   CacheCountMiss();
   if (opt.useCache) {
     if (cacheDir.empty()) MemoryCacheStore(key, result, includer.deps());

@@ -1,6 +1,9 @@
 #include "spirv-edit.h"
 
+#include <algorithm>
 #include <cstddef>
+#include <cstring>
+#include <map>
 #include <spirv/unified1/spirv.hpp>
 #include <string>
 #include <unordered_map>
@@ -290,6 +293,187 @@ void DropBiasFromGathers(std::vector<uint32_t>& spirv) {
     i += wc;
   }
   if (changed) spirv.swap(out);
+}
+
+}  // namespace sp::hlsl
+
+// ---------------------------------------------------------------------------------------------
+// Variants and facts the SPIR-V target (target-spirv.cpp) gives the Vulkan backend.
+
+namespace sp::hlsl {
+
+std::string EntryPointName(const std::vector<uint32_t>& spirv) {
+  std::string name = "main";
+  bool found = false;
+  ForEachConst(spirv, [&](spv::Op op, uint32_t wc, const uint32_t* in) {
+    if (op != spv::OpEntryPoint || wc <= 3 || found) return;
+    const char* s = reinterpret_cast<const char*>(in + 3);
+    name.assign(s, strnlen(s, (wc - 3) * 4));
+    found = true;
+  });
+  return name;
+}
+
+std::vector<uint32_t> DualSourceVariant(const std::vector<uint32_t>& spirv) {
+  std::set<uint32_t> outputs;
+  ForEachConst(spirv, [&](spv::Op op, uint32_t wc, const uint32_t* in) {
+    if (op == spv::OpVariable && wc >= 4 && in[3] == spv::StorageClassOutput) outputs.insert(in[2]);
+  });
+  std::vector<uint32_t> out(spirv.begin(), spirv.begin() + std::min(spirv.size(), kHeaderWords));
+  out.reserve(spirv.size() + 4);
+  ForEachConst(spirv, [&](spv::Op op, uint32_t wc, const uint32_t* in) {
+    bool target1 = op == spv::OpDecorate && wc == 4 && in[2] == spv::DecorationLocation && in[3] == 1 && outputs.count(in[1]);
+    if (!target1) {
+      out.insert(out.end(), in, in + wc);
+      return;
+    }
+    out.insert(out.end(), {(4u << 16) | spv::OpDecorate, in[1], uint32_t(spv::DecorationLocation), 0u});
+    out.insert(out.end(), {(4u << 16) | spv::OpDecorate, in[1], uint32_t(spv::DecorationIndex), 1u});
+  });
+  return out;
+}
+
+namespace {
+// Instructions that may appear among the types, constants and global variables.
+bool IsGlobalDeclaration(spv::Op op) {
+  return (op >= spv::OpTypeVoid && op <= spv::OpTypeForwardPointer) || (op >= spv::OpConstantTrue && op <= spv::OpSpecConstantOp) ||
+         op == spv::OpVariable;
+}
+constexpr uint32_t kFloatOne = 0x3f800000;
+}  // namespace
+
+std::vector<uint32_t> WritePointSizeVariant(const std::vector<uint32_t>& in) {
+  size_t entryIdx = 0, firstGlobal = 0, firstFunction = 0;
+  uint32_t entryFn = 0, floatId = 0, ptrId = 0, oneId = 0;
+  bool ownPointSize = false;
+  for (size_t i = kHeaderWords; i < in.size();) {
+    uint32_t wc = in[i] >> 16;
+    if (wc == 0) break;
+    spv::Op op = spv::Op(in[i] & 0xffff);
+    const uint32_t* w = &in[i];
+    if (op == spv::OpEntryPoint && w[1] == spv::ExecutionModelVertex && !entryIdx) entryIdx = i, entryFn = w[2];
+    if ((op == spv::OpDecorate && wc >= 4 && w[2] == spv::DecorationBuiltIn && w[3] == spv::BuiltInPointSize) ||
+        (op == spv::OpMemberDecorate && wc >= 5 && w[3] == spv::DecorationBuiltIn && w[4] == spv::BuiltInPointSize))
+      ownPointSize = true;
+    if (op == spv::OpTypeFloat && w[2] == 32) floatId = w[1];
+    if (op == spv::OpTypePointer && w[2] == spv::StorageClassOutput && floatId && w[3] == floatId) ptrId = w[1];
+    if (op == spv::OpConstant && floatId && w[1] == floatId && w[3] == kFloatOne) oneId = w[2];
+    if (IsGlobalDeclaration(op) && !firstGlobal && !firstFunction) firstGlobal = i;
+    if (op == spv::OpFunction && !firstFunction) firstFunction = i;
+    i += wc;
+  }
+  if (ownPointSize || !entryIdx || !firstGlobal || !firstFunction) return in;
+  uint32_t bound = in[3];
+  uint32_t var = bound++;
+  std::vector<uint32_t> out(in.begin(), in.begin() + kHeaderWords);
+  bool inEntry = false, afterLabel = false, stored = false;
+  for (size_t i = kHeaderWords; i < in.size();) {
+    uint32_t wc = in[i] >> 16;
+    if (wc == 0) break;
+    spv::Op op = spv::Op(in[i] & 0xffff);
+    if (i == firstGlobal) out.insert(out.end(), {(4u << 16) | spv::OpDecorate, var, uint32_t(spv::DecorationBuiltIn), uint32_t(spv::BuiltInPointSize)});
+    if (i == firstFunction) {
+      if (!floatId) out.insert(out.end(), {(3u << 16) | spv::OpTypeFloat, floatId = bound++, 32u});
+      if (!ptrId) out.insert(out.end(), {(4u << 16) | spv::OpTypePointer, ptrId = bound++, uint32_t(spv::StorageClassOutput), floatId});
+      if (!oneId) out.insert(out.end(), {(4u << 16) | spv::OpConstant, floatId, oneId = bound++, kFloatOne});
+      out.insert(out.end(), {(4u << 16) | spv::OpVariable, ptrId, var, uint32_t(spv::StorageClassOutput)});
+    }
+    if (op == spv::OpFunction) inEntry = in[i + 2] == entryFn;
+    if (inEntry && afterLabel && !stored && op != spv::OpVariable && op != spv::OpLine && op != spv::OpNoLine) {
+      out.insert(out.end(), {(3u << 16) | spv::OpStore, var, oneId});
+      stored = true;
+    }
+    if (i == entryIdx) {
+      // The new output joins the entry point's interface.
+      out.push_back(((wc + 1) << 16) | op);
+      out.insert(out.end(), in.begin() + i + 1, in.begin() + i + wc);
+      out.push_back(var);
+    } else {
+      out.insert(out.end(), in.begin() + i, in.begin() + i + wc);
+    }
+    if (inEntry && op == spv::OpLabel) afterLabel = true;
+    i += wc;
+  }
+  out[3] = bound;
+  return out;
+}
+
+std::vector<uint32_t> InstanceIdFromZeroVariant(const std::vector<uint32_t>& in) {
+  uint32_t instVar = 0, ptrType = 0;
+  bool hasBase = false;
+  ForEachConst(in, [&](spv::Op op, uint32_t wc, const uint32_t* w) {
+    if (op == spv::OpDecorate && wc >= 4 && w[2] == spv::DecorationBuiltIn && w[3] == spv::BuiltInInstanceIndex) instVar = w[1];
+    if (op == spv::OpDecorate && wc >= 4 && w[2] == spv::DecorationBuiltIn && w[3] == spv::BuiltInBaseInstance) hasBase = true;
+  });
+  if (!instVar || hasBase) return in;
+  ForEachConst(in, [&](spv::Op op, uint32_t wc, const uint32_t* w) {
+    if (op == spv::OpVariable && w[2] == instVar) ptrType = w[1];
+  });
+  uint32_t bound = in[3];
+  uint32_t baseVar = bound++;
+  std::vector<uint32_t> out(in.begin(), in.begin() + kHeaderWords);
+  out.insert(out.end(), {(2u << 16) | spv::OpCapability, uint32_t(spv::CapabilityDrawParameters)});
+  bool decorated = false;
+  ForEachConst(in, [&](spv::Op op, uint32_t wc, const uint32_t* w) {
+    if (op == spv::OpEntryPoint) {
+      out.push_back(((wc + 1) << 16) | op);
+      out.insert(out.end(), w + 1, w + wc);
+      out.push_back(baseVar);
+    } else if (op == spv::OpLoad && w[3] == instVar) {
+      // InstanceIndex - BaseInstance, where the shader read InstanceIndex.
+      uint32_t raw = bound++, base = bound++;
+      out.insert(out.end(), {(4u << 16) | spv::OpLoad, w[1], raw, instVar});
+      out.insert(out.end(), {(4u << 16) | spv::OpLoad, w[1], base, baseVar});
+      out.insert(out.end(), {(5u << 16) | spv::OpISub, w[1], w[2], raw, base});
+    } else {
+      out.insert(out.end(), w, w + wc);
+      if (op == spv::OpDecorate && w[1] == instVar && !decorated) {
+        out.insert(out.end(), {(4u << 16) | spv::OpDecorate, baseVar, uint32_t(spv::DecorationBuiltIn), uint32_t(spv::BuiltInBaseInstance)});
+        decorated = true;
+      }
+      if (op == spv::OpVariable && w[2] == instVar) out.insert(out.end(), {(4u << 16) | spv::OpVariable, ptrType, baseVar, w[3]});
+    }
+  });
+  out[3] = bound;
+  return out;
+}
+
+std::vector<SampledPair> SampledPairs(const std::vector<uint32_t>& spirv, uint32_t textureBase, uint32_t samplerBase) {
+  std::unordered_map<uint32_t, uint32_t> binding, source;               // variable -> binding; loaded id -> variable
+  std::unordered_map<uint32_t, std::pair<uint32_t, uint32_t>> sampled;  // OpSampledImage result -> (image var, sampler var)
+  std::map<std::pair<uint32_t, uint32_t>, SampledPair> pairs;
+  ForEachConst(spirv, [&](spv::Op op, uint32_t wc, const uint32_t* w) {
+    if (op == spv::OpDecorate && wc >= 4 && w[2] == spv::DecorationBinding) binding[w[1]] = w[3];
+    if (op == spv::OpLoad && wc >= 4) source[w[2]] = source.count(w[3]) ? source[w[3]] : w[3];
+    if (op == spv::OpCopyObject && wc >= 4 && source.count(w[3])) source[w[2]] = source[w[3]];
+    if (op == spv::OpSampledImage && wc >= 5 && source.count(w[3]) && source.count(w[4])) sampled[w[2]] = {source[w[3]], source[w[4]]};
+    bool dref = false, gather = false;
+    switch (op) {
+      case spv::OpImageSampleImplicitLod:
+      case spv::OpImageSampleExplicitLod:
+      case spv::OpImageSampleProjImplicitLod:
+      case spv::OpImageSampleProjExplicitLod: break;
+      case spv::OpImageSampleDrefImplicitLod:
+      case spv::OpImageSampleDrefExplicitLod:
+      case spv::OpImageSampleProjDrefImplicitLod:
+      case spv::OpImageSampleProjDrefExplicitLod: dref = true; break;
+      case spv::OpImageGather: gather = true; break;
+      case spv::OpImageDrefGather: dref = gather = true; break;
+      default: return;
+    }
+    // Sampling instructions take the sampled image as their third word.
+    if (wc < 4 || !sampled.count(w[3])) return;
+    auto [img, smp] = sampled[w[3]];
+    if (!binding.count(img) || !binding.count(smp)) return;
+    SampledPair& p = pairs[{binding[img], binding[smp]}];
+    p.textureReg = binding[img] - textureBase;
+    p.samplerReg = binding[smp] - samplerBase;
+    p.compared |= dref;
+    p.filtered |= !dref && !gather;
+  });
+  std::vector<SampledPair> out;
+  for (auto& [k, p] : pairs) out.push_back(p);
+  return out;
 }
 
 }  // namespace sp::hlsl

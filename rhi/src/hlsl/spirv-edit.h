@@ -3,7 +3,10 @@
 #pragma once
 #include <cstdint>
 #include <set>
+#include <string>
 #include <vector>
+
+#include "shader-bindings.h"
 
 namespace sp::hlsl {
 
@@ -53,5 +56,20 @@ void LowerDotAndMatrixProducts(std::vector<uint32_t>& spirv);
 // glslang emits the GLSL.std.450 instruction on the matrix type, which SPIR-V allows only on
 // scalars and vectors. Applies each to the matrix column by column. Runs before legalisation.
 void SplitMatrixIntrinsics(std::vector<uint32_t>& spirv);
+
+// For the SPIR-V target (target-spirv.cpp): the entry point's name, and variants of a module for
+// D3D11 rules Vulkan needs spelled out. A variant that would not differ is returned unchanged.
+std::string EntryPointName(const std::vector<uint32_t>& spirv);
+// D3D's dual-source blending reads SV_Target1 as the second source of target 0; Vulkan needs that
+// output at location 0, index 1, which the HLSL front end cannot declare.
+std::vector<uint32_t> DualSourceVariant(const std::vector<uint32_t>& spirv);
+// D3D11 draws points one pixel wide; Vulkan reads PointSize, which must then be written.
+std::vector<uint32_t> WritePointSizeVariant(const std::vector<uint32_t>& spirv);
+// D3D11's SV_InstanceID counts from 0 whatever StartInstanceLocation is; InstanceIndex includes
+// the base instance, so subtract BaseInstance (shaderDrawParameters).
+std::vector<uint32_t> InstanceIdFromZeroVariant(const std::vector<uint32_t>& spirv);
+// Each (texture, sampler) pair the shader samples with, and whether filtered and/or compared;
+// registers are bindings minus the given bases.
+std::vector<SampledPair> SampledPairs(const std::vector<uint32_t>& spirv, uint32_t textureBase, uint32_t samplerBase);
 
 }  // namespace sp::hlsl

@@ -15,7 +15,7 @@ struct SPIRType;
 namespace sp::hlsl {
 
 // Toolchain revision: part of every cache key. Bump it when a stage changes its output.
-inline constexpr const char* kToolchainRevision = "sp-hlsl-20";
+inline constexpr const char* kToolchainRevision = "sp-hlsl-21";
 
 // Reflection from SPIR-V that still carries SPV_GOOGLE_hlsl_functionality1 decorations
 // (semantics, counter buffers). Throws CompileError for bindings outside ShadowPort's scheme.
@@ -29,15 +29,30 @@ ShaderReflection Reflect(const std::vector<uint32_t>& spirv, ShaderStage stage, 
 uint32_t D3DTypeSize(const spirv_cross::Compiler& c, uint32_t typeId, bool rowMajorSpirv);
 std::vector<uint32_t> D3DMemberOffsets(const spirv_cross::Compiler& c, const spirv_cross::SPIRType& structType);
 
+// The cbuffer repacking rule (target-cbuffer.cpp), shared by both targets: the copies from a
+// D3D11-packed buffer into block `blockType` laid out by `layout`. Std140 also writes the std140
+// offsets and strides into c's decorations when the layouts differ.
+enum class BlockLayout { Std140, SpirvDecorations };
+struct CBufferCopyTable {
+  bool identity = true;  // the layouts agree: bind the buffer as it is
+  uint32_t size = 0;     // bytes of the target's block
+  std::vector<CBufferCopyRange> ranges;
+};
+CBufferCopyTable D3DCBufferCopyTable(spirv_cross::Compiler& c, uint32_t blockType, BlockLayout layout);
+
+// The GLSL target (target-glsl.cpp): GLSL 4.50 for OpenGL from the final SPIR-V, with GL binding
+// points assigned per stage, cbuffers whose D3D packing std140 cannot express rewritten to std140
+// (and a repack table), and for pixel shaders writing SV_Target1 the dual-source variant.
 struct GlslOutput {
   std::string glsl;
-  std::vector<GlBinding> bindings;
+  detail::GlslProducts products;
 };
-
-// GLSL 4.50 for OpenGL from the final SPIR-V, with GL binding points assigned per stage and
-// cbuffers whose D3D packing std140 cannot express rewritten to std140 (and a repack table).
 GlslOutput CrossCompileToGlsl(const std::vector<uint32_t>& spirv, const ShaderReflection& reflection,
                               const std::string& sourceName);
+
+// The SPIR-V target (target-spirv.cpp): what the Vulkan backend needs besides the SPIR-V itself.
+detail::SpirvProducts MakeSpirvProducts(const std::vector<uint32_t>& spirv, const ShaderReflection& reflection,
+                                        const std::string& sourceName);
 
 // GL binding bases per stage: one program pipeline holds VS and PS programs, whose bindings must
 // not collide in GL's per-context binding tables.

@@ -1,27 +1,28 @@
-// SPIR-V -> GLSL 4.50 for the OpenGL backend.
+// The GLSL target: SPIR-V -> GLSL 4.50 and everything else the OpenGL backend needs, made once at
+// compile time (and cached with it), so the backend only creates programs.
 //
-// GL differs from D3D/Vulkan in two ways that matter here:
+// GL differs from D3D/Vulkan in three ways that matter here:
 //  - textures and samplers are combined: each (texture, sampler) pair a shader uses becomes one
 //    sampler uniform with its own texture unit, and Load/texelFetch get a dummy sampler;
 //  - uniform blocks follow std140, which cannot express every HLSL cbuffer packing (a float3 right
 //    after a float, a float after a float3x3, arrays of structs whose size std140 rounds up).
 //    Such blocks are given std140 offsets here, and the GL backend repacks the D3D-laid-out buffer
-//    into that layout with the copy table computed alongside.
+//    into that layout with the copy table of the shared rule (target-cbuffer.cpp);
+//  - dual-source blending reads the output at location 0 index 1, which D3D's SV_Target1 is not:
+//    the variant is cross-compiled from SPIR-V with that decoration (spirv-edit.cpp).
 #include <algorithm>
 #include <spirv_cross/spirv_glsl.hpp>
 
+#include "spirv-edit.h"
 #include "toolchain.h"
 
 namespace sp::hlsl {
 namespace {
 
-using spirv_cross::SPIRType;
 
 [[noreturn]] void Fail(const std::string& source, const std::string& msg) {
   throw CompileError("CrossCompileToGlsl", source, {{source, 0, msg}}, msg);
 }
-
-uint32_t AlignUp(uint32_t v, uint32_t a) { return (v + a - 1) / a * a; }
 
 // OpAtomicSMin/SMax on unsigned integer memory (made by FixAtomicOperandTypes).
 bool HasSignedAtomicOnUnsignedWords(const std::vector<uint32_t>& spirv) {
@@ -38,90 +39,6 @@ bool HasSignedAtomicOnUnsignedWords(const std::vector<uint32_t>& spirv) {
   }
   return false;
 }
-
-struct Layout {
-  uint32_t size = 0, align = 0;
-};
-
-// Walks a block type, assigning std140 offsets (written back into the compiler's decorations)
-// and recording the byte ranges to copy from the D3D layout.
-class Std140Rewriter {
- public:
-  Std140Rewriter(spirv_cross::CompilerGLSL& c) : c_(c) {}
-
-  // Returns the std140 layout of struct `typeId`; appends copies for data at srcBase/dstBase.
-  Layout Struct(uint32_t typeId, uint32_t srcBase, uint32_t dstBase, bool record) {
-    const SPIRType& t = c_.get_type(typeId);
-    uint32_t offset = 0, align = 16;
-    // Source offsets follow fxc's packing, not glslang's decorations (see D3DMemberOffsets).
-    const std::vector<uint32_t> srcOffsets = D3DMemberOffsets(c_, t);
-    for (uint32_t i = 0; i < t.member_types.size(); ++i) {
-      uint32_t srcOff = srcOffsets[i];
-      bool rowMajor = c_.has_member_decoration(t.self, i, spv::DecorationRowMajor);
-      uint32_t memberAlign = Align(t.member_types[i], rowMajor);
-      offset = AlignUp(offset, memberAlign);
-      Layout l = Member(t.member_types[i], rowMajor, srcBase + srcOff, dstBase + offset, record);
-      if (rewrite_ && c_.get_member_decoration(t.self, i, spv::DecorationOffset) != offset) {
-        c_.set_member_decoration(t.self, i, spv::DecorationOffset, offset);
-      }
-      offset += l.size;
-      align = std::max(align, memberAlign);
-    }
-    return {AlignUp(offset, 16), align};
-  }
-
-  void SetRewrite(bool r) { rewrite_ = r; }
-  std::vector<GlCopyRange> ranges;
-
- private:
-  uint32_t Align(uint32_t typeId, bool rowMajor) {
-    const SPIRType& t = c_.get_type(typeId);
-    if (!t.array.empty() || t.basetype == SPIRType::Struct || t.columns > 1) return 16;
-    return t.vecsize == 1 ? 4 : t.vecsize == 2 ? 8 : 16;
-  }
-
-  Layout Member(uint32_t typeId, bool rowMajor, uint32_t src, uint32_t dst, bool record) {
-    const SPIRType& t = c_.get_type(typeId);
-    if (!t.array.empty()) {
-      uint32_t elemType = t.parent_type;
-      uint32_t count = t.array.back();
-      if (!t.array_size_literal.back()) Fail("cbuffer", "specialization-constant array sizes are not supported in cbuffers");
-      // The element's own std140 size decides the stride (rounded to 16); in D3D every element
-      // starts a register.
-      uint32_t srcStride = AlignUp(D3DTypeSize(c_, elemType, rowMajor), 16);
-      Layout el = Member(elemType, rowMajor, src, dst, false);
-      uint32_t stride = AlignUp(std::max(el.size, 16u), 16);
-      for (uint32_t i = 0; i < count; ++i) Member(elemType, rowMajor, src + i * srcStride, dst + i * stride, record);
-      if (rewrite_ && c_.get_decoration(typeId, spv::DecorationArrayStride) != stride) c_.set_decoration(typeId, spv::DecorationArrayStride, stride);
-      return {stride * count, 16};
-    }
-    if (t.basetype == SPIRType::Struct) return Struct(typeId, src, dst, record);
-    if (t.columns > 1) {
-      // MatrixStride is 16 in both layouts; copy vector by vector.
-      uint32_t vectors = rowMajor ? t.vecsize : t.columns;
-      uint32_t comps = rowMajor ? t.columns : t.vecsize;
-      for (uint32_t v = 0; v < vectors; ++v) Copy(src + v * 16, dst + v * 16, comps * 4, record);
-      return {vectors * 16, 16};
-    }
-    Copy(src, dst, t.vecsize * 4, record);
-    return {t.vecsize * 4, t.vecsize == 1 ? 4u : t.vecsize == 2 ? 8u : 16u};
-  }
-
-  void Copy(uint32_t src, uint32_t dst, uint32_t size, bool record) {
-    if (!record) return;
-    if (!ranges.empty()) {
-      GlCopyRange& last = ranges.back();
-      if (last.src + last.size == src && last.dst + last.size == dst) {
-        last.size += size;
-        return;
-      }
-    }
-    ranges.push_back({src, dst, size});
-  }
-
-  spirv_cross::CompilerGLSL& c_;
-  bool rewrite_ = false;
-};
 
 // With the extension, Mesa makes gl_Layer and gl_ViewportIndex members of the vertex stage's
 // gl_PerVertex, and a redeclared gl_PerVertex (SPIRV-Cross writes one for separable programs)
@@ -151,7 +68,9 @@ GlStageBases GlBasesForStage(ShaderStage stage) {
   return {0, 0, 16};
 }
 
-GlslOutput CrossCompileToGlsl(const std::vector<uint32_t>& spirv, const ShaderReflection& refl, const std::string& sourceName) {
+namespace {
+
+GlslOutput CrossCompileOne(const std::vector<uint32_t>& spirv, const ShaderReflection& refl, const std::string& sourceName) {
   GlslOutput out;
   try {
     spirv_cross::CompilerGLSL c(spirv);
@@ -184,21 +103,14 @@ GlslOutput CrossCompileToGlsl(const std::vector<uint32_t>& spirv, const ShaderRe
       b.glBinding = bases.uniformBlock + reg;
       b.registerClass = RegisterClass::ConstantBuffer;
       b.registerIndex = reg;
-      Std140Rewriter rw(c);
-      rw.SetRewrite(false);
-      Layout std140 = rw.Struct(ub.base_type_id, 0, 0, true);
-      // Identity copy table = the D3D layout already is std140.
-      bool identity = std::all_of(rw.ranges.begin(), rw.ranges.end(), [](const GlCopyRange& r) { return r.src == r.dst; });
-      if (!identity) {
-        Std140Rewriter apply(c);
-        apply.SetRewrite(true);
-        apply.Struct(ub.base_type_id, 0, 0, true);
-        b.repack = std::move(apply.ranges);
+      CBufferCopyTable std140 = D3DCBufferCopyTable(c, ub.base_type_id, BlockLayout::Std140);
+      if (!std140.identity) {
+        b.repack = std::move(std140.ranges);
         b.glBlockSize = std140.size;
       }
       c.set_decoration(ub.id, spv::DecorationBinding, b.glBinding);
       c.unset_decoration(ub.id, spv::DecorationDescriptorSet);
-      out.bindings.push_back(std::move(b));
+      out.products.bindings.push_back(std::move(b));
     }
 
     // Storage blocks: UAV buffers keep their register (D3D shares u# between PS and CS), their
@@ -225,7 +137,7 @@ GlslOutput CrossCompileToGlsl(const std::vector<uint32_t>& spirv, const ShaderRe
       }
       c.set_decoration(sb.id, spv::DecorationBinding, b.glBinding);
       c.unset_decoration(sb.id, spv::DecorationDescriptorSet);
-      out.bindings.push_back(std::move(b));
+      out.products.bindings.push_back(std::move(b));
     }
 
     for (const auto& img : res.storage_images) {
@@ -236,7 +148,7 @@ GlslOutput CrossCompileToGlsl(const std::vector<uint32_t>& spirv, const ShaderRe
       b.glBinding = b.registerIndex;
       c.set_decoration(img.id, spv::DecorationBinding, b.glBinding);
       c.unset_decoration(img.id, spv::DecorationDescriptorSet);
-      out.bindings.push_back(std::move(b));
+      out.products.bindings.push_back(std::move(b));
     }
 
     // Combined image-samplers, one texture unit each.
@@ -255,7 +167,7 @@ GlslOutput CrossCompileToGlsl(const std::vector<uint32_t>& spirv, const ShaderRe
       b.glBinding = unit++;
       c.set_decoration(cis.combined_id, spv::DecorationBinding, b.glBinding);
       c.set_name(cis.combined_id, "sp_" + c.get_name(cis.image_id) + (dummy ? std::string("_load") : "_" + c.get_name(cis.sampler_id)));
-      out.bindings.push_back(std::move(b));
+      out.products.bindings.push_back(std::move(b));
     }
     // Typed buffers (Buffer<T>) are only ever fetched: SPIRV-Cross declares them as samplerBuffer
     // without a combined sampler, so they need a texture unit of their own.
@@ -270,7 +182,7 @@ GlslOutput CrossCompileToGlsl(const std::vector<uint32_t>& spirv, const ShaderRe
       b.glBinding = unit++;
       c.set_decoration(img.id, spv::DecorationBinding, b.glBinding);
       c.unset_decoration(img.id, spv::DecorationDescriptorSet);
-      out.bindings.push_back(std::move(b));
+      out.products.bindings.push_back(std::move(b));
     }
     out.glsl = c.compile();
     if (layerOutputs) DeclareLayerOutputsInPerVertex(out.glsl);
@@ -291,6 +203,16 @@ GlslOutput CrossCompileToGlsl(const std::vector<uint32_t>& spirv, const ShaderRe
                        "pad them to their natural alignment (SPIRV-Cross: " + what + ")");
     Fail(sourceName, "SPIRV-Cross: " + what);
   }
+  return out;
+}
+
+}  // namespace
+
+GlslOutput CrossCompileToGlsl(const std::vector<uint32_t>& spirv, const ShaderReflection& refl, const std::string& sourceName) {
+  GlslOutput out = CrossCompileOne(spirv, refl, sourceName);
+  if (refl.stage == ShaderStage::Pixel)
+    for (const SignatureElement& o : refl.outputs)
+      if (o.semanticName == "SV_TARGET" && o.semanticIndex == 1) out.products.dualSourceGlsl = CrossCompileOne(DualSourceVariant(spirv), refl, sourceName).glsl;
   return out;
 }
 
