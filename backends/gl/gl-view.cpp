@@ -210,6 +210,7 @@ GLView::~GLView() {
   dev->MakeCurrent();
   if (ownsTexture) dev->DeleteTexture(texture);
   if (counter) dev->DeleteBuffer(counter);
+  if (clearView) dev->DeleteTexture(clearView);
 }
 
 std::unique_ptr<detail::BackendObject> CreateGLView(GLDevice& dev, View& view) {

@@ -432,7 +432,7 @@ void DeviceContext::ClearDepthStencilView(DepthStencilView* dsv, uint32_t flags,
 void DeviceContext::ClearUnorderedAccessViewUint(UnorderedAccessView* uav, const uint32_t values[4]) {
   if (!uav || !values) Fail(ErrorId::INVALID_ARGUMENT, "ClearUnorderedAccessViewUint", Describe(uav), "null argument");
   CheckOwner(device_, uav, "ClearUnorderedAccessViewUint");
-  backend_->ClearUnorderedAccessViewUint(uav, values);
+  backend_->ClearUnorderedAccessView(uav, ResolveUavClearUint(*uav, values));
 }
 
 void DeviceContext::ClearUnorderedAccessViewFloat(UnorderedAccessView* uav, const float values[4]) {
@@ -442,7 +442,7 @@ void DeviceContext::ClearUnorderedAccessViewFloat(UnorderedAccessView* uav, cons
   FormatKind k = GetFormatInfo(uav->ViewFormat()).kind;
   if (k != FormatKind::Float && k != FormatKind::UNorm && k != FormatKind::SNorm && k != FormatKind::UNormSRGB)
     Fail(ErrorId::INVALID_ARGUMENT, call, Describe(uav), "ClearUnorderedAccessViewFloat needs a float/unorm/snorm typed view; use ClearUnorderedAccessViewUint");
-  backend_->ClearUnorderedAccessViewFloat(uav, values);
+  backend_->ClearUnorderedAccessView(uav, ResolveUavClearFloat(*uav, values));
 }
 
 // ---------------------------------------------------------------------------------------------
