@@ -104,21 +104,10 @@ void PackClearFloat(FORMAT f, const float v[4], uint8_t* out) {
   }
 }
 
-namespace {
-
-// Raw and structured buffer views: D3D11 treats them as R32_UINT.
-bool Formatless(const UnorderedAccessView& uav) {
-  const Resource* r = uav.GetResource();
-  if (r->GetType() != RESOURCE_DIMENSION_BUFFER) return false;
-  const bool structured = static_cast<const Buffer*>(r)->GetDesc().MiscFlags & RESOURCE_MISC_BUFFER_STRUCTURED;
-  return structured || (uav.GetDesc().Buffer.Flags & BUFFER_UAV_FLAG_RAW);
-}
-
-}  // namespace
-
 UavClearValue ResolveUavClearUint(const UnorderedAccessView& uav, const uint32_t values[4]) {
   UavClearValue out;
-  if (Formatless(uav)) {
+  // Raw and structured buffer views: D3D11 treats them as R32_UINT.
+  if (uav.Shape() == ViewShape::RawBuffer || uav.Shape() == ViewShape::StructuredBuffer) {
     out.perWord = true;
     out.texelBytes = 4;
     std::memcpy(out.texel, &values[0], 4);
