@@ -191,8 +191,8 @@ void VulkanContext::ResolveSubresource(Resource* dst, uint32_t dstSub, Resource*
   VkTextureObj &d = TextureOf(dst), &s = TextureOf(src);
   if (IsIntegerFormat(format))
     Throw(ErrorId::FORMAT_UNSUPPORTED, call, DescribeObject(src), std::string(FormatName(format)) + " cannot be resolved (integer formats have no MULTISAMPLE_RESOLVE)");
-  uint32_t sm = srcSub % s.shape.mipLevels, slayer = srcSub / s.shape.mipLevels;
-  uint32_t dm = dstSub % d.shape.mipLevels, dlayer = dstSub / d.shape.mipLevels;
+  const detail::Subresource srcSr = detail::SubresourceOf(s.shape, srcSub), dstSr = detail::SubresourceOf(d.shape, dstSub);
+  const uint32_t sm = srcSr.mip, slayer = srcSr.slice, dm = dstSr.mip, dlayer = dstSr.slice;
   VkFormat vf = VkFormatOf(format);
   VkCommandBuffer cmd = Cmd();
   VkExtent3D extent{d.shape.mipWidth(dm), d.shape.mipHeight(dm), 1};

@@ -209,7 +209,7 @@ struct VkTextureObj final : TrackedObject {
   VkImageAspectFlags aspects = 0;
   uint32_t layers = 1;              // Vulkan array layers (1 for 3D)
   std::vector<AccessState> states;  // per subresource, D3D order: layer * mipLevels + mip
-  AccessState& State(uint32_t mip, uint32_t layer) { return states[size_t(layer) * shape.mipLevels + mip]; }
+  AccessState& State(uint32_t mip, uint32_t layer) { return states[CalcSubresource(mip, layer, shape.mipLevels)]; }
   // Staging textures: memory laid out as D3D11 maps it, and for depth-stencil families the planes
   // Vulkan copies use (depth and stencil separately); the CPU layout is rebuilt from the planes on Map.
   struct Sub {

@@ -14,6 +14,7 @@
 
 #include "clear-values.h"
 #include "pipeline-state.h"
+#include "subresource.h"
 
 namespace sp::detail {
 
