@@ -9,23 +9,6 @@
 namespace sp::gl {
 namespace {
 
-// ClearUnorderedAccessViewUint writes the low bits of each value into each channel, unconverted.
-std::array<uint8_t, 16> PackUintTexel(FORMAT format, const uint32_t v[4]) {
-  std::array<uint8_t, 16> out{};
-  const FormatInfo& fi = GetFormatInfo(format);
-  if (format == FORMAT_R10G10B10A2_UNORM || format == FORMAT_R10G10B10A2_UINT) {
-    uint32_t t = (v[0] & 0x3ff) | (v[1] & 0x3ff) << 10 | (v[2] & 0x3ff) << 20 | (v[3] & 3) << 30;
-    std::memcpy(out.data(), &t, 4);
-  } else if (format == FORMAT_R11G11B10_FLOAT) {
-    uint32_t t = (v[0] & 0x7ff) | (v[1] & 0x7ff) << 11 | (v[2] & 0x3ff) << 22;
-    std::memcpy(out.data(), &t, 4);
-  } else {
-    const uint32_t channelBytes = fi.bytesPerElement / std::max(fi.components, 1u);
-    for (uint32_t c = 0; c < fi.components; ++c) std::memcpy(out.data() + c * channelBytes, &v[c], channelBytes);  // little endian
-  }
-  return out;
-}
-
 template <class T>
 T ToInteger(float f, double lo, double hi) {
   if (std::isnan(f)) return 0;
@@ -78,8 +61,28 @@ void GLContext::ClearDepthStencilView(DepthStencilView* dsv, uint32_t flags, flo
   else glClearNamedFramebufferiv(fbo, GL_STENCIL, 0, &s);
 }
 
-static void ClearImage(const UnorderedAccessView* uav, GLenum format, GLenum type, const void* data) {
-  const GLView& v = GL(uav);
+namespace {
+
+// The unsigned-integer format of a texel size: GL hands integer data over without conversion,
+// while its float paths canonicalise NaNs and flush denormals of packed floats.
+struct UintLayout {
+  GLenum internal, format;
+};
+UintLayout UintOfSize(uint32_t bytes) {
+  switch (bytes) {
+    case 1: return {GL_R8UI, GL_RED_INTEGER};
+    case 2: return {GL_R16UI, GL_RED_INTEGER};
+    case 8: return {GL_RG32UI, GL_RG_INTEGER};
+    case 12: return {GL_RGB32UI, GL_RGB_INTEGER};
+    case 16: return {GL_RGBA32UI, GL_RGBA_INTEGER};
+    default: return {GL_R32UI, GL_RED_INTEGER};
+  }
+}
+GLenum UintType(uint32_t bytes) { return bytes == 1 ? GL_UNSIGNED_BYTE : bytes == 2 ? GL_UNSIGNED_SHORT : GL_UNSIGNED_INT; }
+
+}  // namespace
+
+static void ClearImage(GLView& v, const UnorderedAccessView* uav, const detail::UavClearValue& value) {
   const Texture* tex = static_cast<const Texture*>(uav->GetResource());
   const ViewRange& r = uav->Range();
   const TextureShape& s = tex->Shape();
@@ -87,30 +90,29 @@ static void ClearImage(const UnorderedAccessView* uav, GLenum format, GLenum typ
   uint32_t layer = uint32_t(std::max(v.layer, 0)), layers = 1;
   if (v.layered) layers = s.dimension == RESOURCE_DIMENSION_TEXTURE3D ? s.mipDepth(r.firstMip) : r.sliceCount;
   const GLRegion g = RegionOf(v.target, 0, 0, layer, w, h, layers);
-  glClearTexSubImage(v.texture, v.level, g.x, g.y, g.z, g.w, g.h, g.d, format, type, data);
-}
-
-void GLContext::ClearUnorderedAccessViewUint(UnorderedAccessView* uav, const uint32_t values[4]) {
-  dev_.MakeCurrent();
-  const GLView& v = GL(uav);
-  if (v.kind == GLView::Kind::StorageBuffer) {
-    // Raw and structured views: every 32-bit word gets values[0].
-    glClearNamedBufferSubData(v.buffer, GL_R32UI, v.offset, v.size, GL_RED_INTEGER, GL_UNSIGNED_INT, &values[0]);
-    return;
+  // Integer formats take their own client layout unconverted.
+  if (v.format->integer) return glClearTexSubImage(v.texture, v.level, g.x, g.y, g.z, g.w, g.h, g.d, v.format->extFormat, v.format->extType, value.texel);
+  const UintLayout u = UintOfSize(value.texelBytes);
+  if (!v.clearView) {
+    // A view of all of `texture` (itself maybe a view), so that level and layers stay as above.
+    GLint levels = 1, allLayers = 1;
+    glGetTextureParameteriv(v.texture, GL_TEXTURE_IMMUTABLE_LEVELS, &levels);
+    if (v.target == GL_TEXTURE_1D_ARRAY) glGetTextureLevelParameteriv(v.texture, 0, GL_TEXTURE_HEIGHT, &allLayers);
+    else if (v.target == GL_TEXTURE_2D_ARRAY || v.target == GL_TEXTURE_CUBE_MAP_ARRAY) glGetTextureLevelParameteriv(v.texture, 0, GL_TEXTURE_DEPTH, &allLayers);
+    else if (v.target == GL_TEXTURE_CUBE_MAP) allLayers = 6;
+    glGenTextures(1, &v.clearView);
+    glTextureView(v.clearView, v.target, v.texture, u.internal, 0, GLuint(levels), 0, GLuint(allLayers));
   }
-  // The texel is built in memory order and handed over in the format's exact client layout.
-  const std::array<uint8_t, 16> texel = PackUintTexel(uav->ViewFormat(), values);
-  if (v.kind == GLView::Kind::TypedBuffer)
-    glClearNamedBufferSubData(v.buffer, v.format->internal, v.offset, v.size, v.format->extFormat, v.format->extType, texel.data());
-  else
-    ClearImage(uav, v.format->extFormat, v.format->extType, texel.data());
+  glClearTexSubImage(v.clearView, v.level, g.x, g.y, g.z, g.w, g.h, g.d, u.format, UintType(value.texelBytes), value.texel);
 }
 
-void GLContext::ClearUnorderedAccessViewFloat(UnorderedAccessView* uav, const float values[4]) {
+// The core packed the texel in memory order; it goes over as unsigned integers of the same size.
+void GLContext::ClearUnorderedAccessView(UnorderedAccessView* uav, const detail::UavClearValue& value) {
   dev_.MakeCurrent();
-  const GLView& v = GL(uav);
-  if (v.kind == GLView::Kind::TypedBuffer) glClearNamedBufferSubData(v.buffer, v.format->internal, v.offset, v.size, GL_RGBA, GL_FLOAT, values);
-  else ClearImage(uav, GL_RGBA, GL_FLOAT, values);
+  GLView& v = GL(uav);
+  if (v.kind == GLView::Kind::Texture) return ClearImage(v, uav, value);
+  const UintLayout u = UintOfSize(value.texelBytes);
+  glClearNamedBufferSubData(v.buffer, u.internal, v.offset, v.size, u.format, UintType(value.texelBytes), value.texel);
 }
 
 }  // namespace sp::gl

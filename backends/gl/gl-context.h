@@ -120,8 +120,7 @@ class GLContext final : public detail::ContextBackend {
                 uint32_t argsOffset) override;
   void ClearRenderTargetView(RenderTargetView* rtv, const float rgba[4]) override;
   void ClearDepthStencilView(DepthStencilView* dsv, uint32_t clearFlags, float depth, uint8_t stencil) override;
-  void ClearUnorderedAccessViewUint(UnorderedAccessView* uav, const uint32_t values[4]) override;
-  void ClearUnorderedAccessViewFloat(UnorderedAccessView* uav, const float values[4]) override;
+  void ClearUnorderedAccessView(UnorderedAccessView* uav, const detail::UavClearValue& value) override;
   void CopyResource(Resource* dst, Resource* src) override;
   void CopySubresourceRegion(Resource* dst, uint32_t dstSubresource, uint32_t dstX, uint32_t dstY, uint32_t dstZ, Resource* src,
                              uint32_t srcSubresource, const BOX& srcBox) override;

@@ -137,6 +137,7 @@ struct GLView : detail::BackendObject {
   GLintptr offset = 0;
   GLsizeiptr size = 0;
   GLuint counter = 0;  // hidden counter of append/counter UAVs
+  GLuint clearView = 0;  // UAVs of non-integer formats: a same-size uint view for bit-exact clears, made on first clear
   ~GLView() override;
 };
 

@@ -50,7 +50,7 @@ bool GLContext::Map(Resource* r, uint32_t sub, MAP type, uint32_t flags, MAPPED_
     return true;
   }
   // USAGE_DYNAMIC with WRITE_DISCARD (the only way the core lets a dynamic texture be mapped).
-  const uint32_t mip = sub % t.shape.mipLevels;
+  const uint32_t mip = detail::SubresourceOf(t.shape, sub).mip;
   const uint32_t rowPitch = t.shape.mipWidth(mip) * GetFormatInfo(t.shape.format).bytesPerElement;
   const uint32_t height = t.shape.dimension == RESOURCE_DIMENSION_TEXTURE1D ? 1 : t.shape.mipHeight(mip);
   std::vector<uint8_t>& data = t.dynamicData[sub];
@@ -80,7 +80,7 @@ void GLContext::Unmap(Resource* r, uint32_t sub) {
   }
   GLTexture& t = GL(static_cast<Texture*>(r));
   if (t.isStaging()) return;  // coherent: the GPU sees CPU writes
-  const uint32_t mip = sub % t.shape.mipLevels;
+  const uint32_t mip = detail::SubresourceOf(t.shape, sub).mip;
   const uint32_t rowPitch = t.shape.mipWidth(mip) * GetFormatInfo(t.shape.format).bytesPerElement;
   const uint32_t height = t.shape.dimension == RESOURCE_DIMENSION_TEXTURE1D ? 1 : t.shape.mipHeight(mip);
   UploadRegion(t, sub, 0, 0, 0, t.shape.mipWidth(mip), t.shape.mipHeight(mip), t.shape.mipDepth(mip), t.dynamicData[sub].data(), rowPitch,

@@ -38,7 +38,10 @@ bool GLTexture::arrayed() const {
   return target == GL_TEXTURE_1D_ARRAY || target == GL_TEXTURE_2D_ARRAY || target == GL_TEXTURE_2D_MULTISAMPLE_ARRAY;
 }
 
-GLSubresource SubresourceOf(const TextureShape& s, uint32_t sub) { return {GLint(sub % s.mipLevels), GLint(sub / s.mipLevels)}; }
+GLSubresource SubresourceOf(const TextureShape& s, uint32_t sub) {
+  const detail::Subresource r = detail::SubresourceOf(s, sub);
+  return {GLint(r.mip), GLint(r.slice)};
+}
 
 void D24S8ToD3D(uint32_t* t, size_t n) {
   for (size_t i = 0; i < n; ++i) t[i] = (t[i] >> 8) | (t[i] << 24);
@@ -155,8 +158,8 @@ std::unique_ptr<detail::BackendObject> CreateGLTexture(GLDevice& dev, Texture& t
   }
   if (init) {
     for (uint32_t i = 0; i < s.subresourceCount(); ++i) {
-      const uint32_t mip = i % s.mipLevels;
-      UploadRegion(*t, i, 0, 0, 0, s.mipWidth(mip), s.mipHeight(mip), s.mipDepth(mip), init[i].pSysMem, init[i].SysMemPitch,
+      const detail::Subresource r = detail::SubresourceOf(s, i);
+      UploadRegion(*t, i, 0, 0, 0, r.width, r.height, r.depth, init[i].pSysMem, init[i].SysMemPitch,
                    init[i].SysMemSlicePitch);
     }
   } else {

@@ -160,9 +160,7 @@ void GLContext::CopyResource(Resource* dst, Resource* src) {
   Texture *d = static_cast<Texture*>(dst), *s = static_cast<Texture*>(src);
   const TextureShape& shape = s->Shape();
   for (uint32_t sub = 0; sub < shape.subresourceCount(); ++sub) {
-    const uint32_t mip = sub % shape.mipLevels;
-    BOX b{0, 0, 0, shape.mipWidth(mip), shape.mipHeight(mip), shape.mipDepth(mip)};
-    CopyTextureRegion(d, sub, 0, 0, 0, s, sub, b);
+    CopyTextureRegion(d, sub, 0, 0, 0, s, sub, detail::SubresourceOf(shape, sub).box());
   }
 }
 

@@ -66,17 +66,8 @@ void CreateBufferView(GLDevice& dev, GLView& v, View& view, bool uav) {
   v.buffer = gb.name;
   v.offset = GLintptr(r.firstByte);
   v.size = GLsizeiptr(r.byteCount);
-  const bool structured = (buf->GetDesc().MiscFlags & RESOURCE_MISC_BUFFER_STRUCTURED) != 0;
-  bool raw = false;
-  uint32_t uavFlags = 0;
-  if (uav) {
-    uavFlags = static_cast<const UnorderedAccessView&>(view).GetDesc().Buffer.Flags;
-    raw = uavFlags & BUFFER_UAV_FLAG_RAW;
-  } else {
-    const SHADER_RESOURCE_VIEW_DESC& d = static_cast<const ShaderResourceView&>(view).GetDesc();
-    raw = d.ViewDimension == SRV_DIMENSION_BUFFEREX && (d.BufferEx.Flags & BUFFEREX_SRV_FLAG_RAW);
-  }
-  if (structured || raw) {
+  const uint32_t uavFlags = uav ? static_cast<const UnorderedAccessView&>(view).GetDesc().Buffer.Flags : 0;
+  if (view.Shape() != ViewShape::TypedBuffer) {
     v.kind = GLView::Kind::StorageBuffer;
     if (r.firstByte % uint64_t(dev.ssboAlignment))
       NotSupported(view, call, "the view starts at byte " + std::to_string(r.firstByte) + ", but this driver's storage-buffer offset alignment is " +
@@ -172,11 +163,10 @@ void CreateAttachmentView(GLView& v, const View& view, const GLTexture& t, const
 void CreateImageView(GLView& v, const UnorderedAccessView& view, const GLTexture& t) {
   const ViewRange& r = view.Range();
   const TextureShape& s = t.shape;
-  const UAV_DIMENSION dim = view.GetDesc().ViewDimension;
-  const bool arrayDim = dim == UAV_DIMENSION_TEXTURE1DARRAY || dim == UAV_DIMENSION_TEXTURE2DARRAY;
+  const bool arrayDim = view.Shape() == ViewShape::Texture1DArray || view.Shape() == ViewShape::Texture2DArray;
   const bool sameFormat = v.format->internal == t.storage->internal;
   v.target = t.target;
-  if (dim == UAV_DIMENSION_TEXTURE3D) {
+  if (view.Shape() == ViewShape::Texture3D) {
     if (!(r.firstSlice == 0 && r.sliceCount == s.mipDepth(r.firstMip)))
       NotSupported(view, "CreateUnorderedAccessView", "OpenGL binds a 3D mip as an image only whole; FirstWSlice must be 0 and WSize all slices");
     v.texture = sameFormat ? t.name : MakeView(t, GL_TEXTURE_3D, v.format->internal, r.firstMip, 1, 0, 1);
@@ -210,22 +200,25 @@ GLView::~GLView() {
   dev->MakeCurrent();
   if (ownsTexture) dev->DeleteTexture(texture);
   if (counter) dev->DeleteBuffer(counter);
+  if (clearView) dev->DeleteTexture(clearView);
 }
 
 std::unique_ptr<detail::BackendObject> CreateGLView(GLDevice& dev, View& view) {
   auto v = std::make_unique<GLView>();
   v->dev = &dev;
-  const bool isUav = dynamic_cast<UnorderedAccessView*>(&view) != nullptr;
-  if (view.GetResource()->GetType() == RESOURCE_DIMENSION_BUFFER) {
-    CreateBufferView(dev, *v, view, isUav);
+  if (view.IsBuffer()) {
+    CreateBufferView(dev, *v, view, view.Kind() == ViewKind::UnorderedAccess);
     return v;
   }
   const GLTexture& t = GL(static_cast<const Texture*>(view.GetResource()));
   // Depth textures are read through their depth-stencil format (the aspect is view state).
   v->format = t.storage->depth ? t.storage : &FormatOf(view.ViewFormat());
-  if (auto* srv = dynamic_cast<ShaderResourceView*>(&view)) CreateShaderResourceView(*v, *srv, t);
-  else if (auto* uav = dynamic_cast<UnorderedAccessView*>(&view)) CreateImageView(*v, *uav, t);
-  else CreateAttachmentView(*v, view, t, dynamic_cast<RenderTargetView*>(&view) ? "CreateRenderTargetView" : "CreateDepthStencilView");
+  switch (view.Kind()) {
+    case ViewKind::ShaderResource: CreateShaderResourceView(*v, static_cast<ShaderResourceView&>(view), t); break;
+    case ViewKind::UnorderedAccess: CreateImageView(*v, static_cast<UnorderedAccessView&>(view), t); break;
+    case ViewKind::RenderTarget: CreateAttachmentView(*v, view, t, "CreateRenderTargetView"); break;
+    case ViewKind::DepthStencil: CreateAttachmentView(*v, view, t, "CreateDepthStencilView"); break;
+  }
   return v;
 }
 

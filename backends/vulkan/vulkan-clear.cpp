@@ -1,7 +1,7 @@
 // Clears, mip generation, resolves and append-counter commands. Render-target and depth clears
 // are dynamic-rendering passes with a CLEAR load op on the view itself (so view formats, layers
 // and sRGB conversion behave as in D3D11, and scissor and write masks do not apply). UAV clears
-// use D3D11's bit-exact texel encodings, written by fills or copies.
+// write the core's packed texels (detail::UavClearValue) by fills, copies or bit-exact clears.
 #include <cmath>
 #include <cstring>
 
@@ -22,7 +22,20 @@ VkClearColorValue ClearColor(FORMAT f, const float rgba[4]) {
   return v;
 }
 
-bool IsFloat32(FORMAT f) { return f == FORMAT_R32_FLOAT || f == FORMAT_R32G32_FLOAT || f == FORMAT_R32G32B32A32_FLOAT; }
+// Whether vkCmdClearColorImage writes the packed words unchanged: 32-bit channels, where integer
+// formats take them as they are and float formats need no conversion (NaNs might be canonicalised).
+bool ClearColorKeepsBits(FORMAT f, const uint8_t* texel) {
+  const FormatInfo& fi = GetFormatInfo(f);
+  if (fi.components == 0 || fi.bytesPerElement != 4 * fi.components) return false;
+  if (fi.kind == FormatKind::UInt || fi.kind == FormatKind::SInt) return true;
+  if (fi.kind != FormatKind::Float) return false;
+  for (uint32_t c = 0; c < fi.components; ++c) {
+    float x;
+    std::memcpy(&x, texel + 4 * c, 4);
+    if (std::isnan(x)) return false;
+  }
+  return true;
+}
 
 }  // namespace
 
@@ -115,52 +128,35 @@ void ClearTexelBuffer(VulkanContext& ctx, VkViewObj& v, const uint8_t* texel, ui
 
 }  // namespace
 
-void VulkanContext::ClearUnorderedAccessViewUint(UnorderedAccessView* uav, const uint32_t values[4]) {
+void VulkanContext::ClearUnorderedAccessView(UnorderedAccessView* uav, const detail::UavClearValue& value) {
   VkViewObj& v = ViewOf(uav);
-  FORMAT f = uav->ViewFormat();
-  uint8_t texel[16] = {};
   if (v.buffer) {
-    if (!v.texel) {
-      // Raw and structured views: D3D11 writes values[0] to every 32-bit word.
+    if (value.perWord) {
       VkCommandBuffer cmd = Cmd();
       UseBuffer(*v.buffer, access::TransferWrite());
       v.lastUse = v.buffer->lastUse;
       FlushBarriers();
-      vkCmdFillBuffer(cmd, v.buffer->range.buffer, v.buffer->range.offset + v.byteOffset, v.byteSize, values[0]);
+      uint32_t word;
+      std::memcpy(&word, value.texel, 4);
+      vkCmdFillBuffer(cmd, v.buffer->range.buffer, v.buffer->range.offset + v.byteOffset, v.byteSize, word);
     } else {
-      PackUint(f, values, texel);
-      ClearTexelBuffer(*this, v, texel, GetFormatInfo(f).bytesPerElement);
+      ClearTexelBuffer(*this, v, value.texel, value.texelBytes);
     }
     CountWork();
     return;
   }
-  PackUint(f, values, texel);
-  ClearImageViaCopy(v, texel, GetFormatInfo(f).bytesPerElement);
-}
-
-void VulkanContext::ClearUnorderedAccessViewFloat(UnorderedAccessView* uav, const float values[4]) {
-  VkViewObj& v = ViewOf(uav);
-  FORMAT f = uav->ViewFormat();
-  uint8_t texel[16] = {};
-  PackFloat(f, values, texel);
-  if (v.buffer) {
-    ClearTexelBuffer(*this, v, texel, GetFormatInfo(f).bytesPerElement);
-    CountWork();
-    return;
-  }
-  if (IsFloat32(f) && v.format == v.texture->format) {
-    // 32-bit floats convert exactly, so the driver's clear gives D3D11's bits.
+  if (v.format == v.texture->format && ClearColorKeepsBits(uav->ViewFormat(), value.texel)) {
     VkCommandBuffer cmd = Cmd();
     UseView(v, access::TransferWrite());
     FlushBarriers();
     VkClearColorValue c{};
-    for (int i = 0; i < 4; ++i) c.float32[i] = values[i];
+    std::memcpy(c.uint32, value.texel, value.texelBytes);
     VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, v.firstMip, 1, v.firstLayer, v.layerCount};
     vkCmdClearColorImage(cmd, v.texture->image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &c, 1, &range);
     CountWork();
     return;
   }
-  ClearImageViaCopy(v, texel, GetFormatInfo(f).bytesPerElement);
+  ClearImageViaCopy(v, value.texel, value.texelBytes);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -195,8 +191,8 @@ void VulkanContext::ResolveSubresource(Resource* dst, uint32_t dstSub, Resource*
   VkTextureObj &d = TextureOf(dst), &s = TextureOf(src);
   if (IsIntegerFormat(format))
     Throw(ErrorId::FORMAT_UNSUPPORTED, call, DescribeObject(src), std::string(FormatName(format)) + " cannot be resolved (integer formats have no MULTISAMPLE_RESOLVE)");
-  uint32_t sm = srcSub % s.shape.mipLevels, slayer = srcSub / s.shape.mipLevels;
-  uint32_t dm = dstSub % d.shape.mipLevels, dlayer = dstSub / d.shape.mipLevels;
+  const detail::Subresource srcSr = detail::SubresourceOf(s.shape, srcSub), dstSr = detail::SubresourceOf(d.shape, dstSub);
+  const uint32_t sm = srcSr.mip, slayer = srcSr.slice, dm = dstSr.mip, dlayer = dstSr.slice;
   VkFormat vf = VkFormatOf(format);
   VkCommandBuffer cmd = Cmd();
   VkExtent3D extent{d.shape.mipWidth(dm), d.shape.mipHeight(dm), 1};

@@ -48,9 +48,6 @@ VkFormat VkFormatOf(FORMAT f);
 VkFormat ImageFormatOf(const TextureShape& s);
 VkImageAspectFlags AspectsOf(VkFormat f);
 bool IsDepthStencilFormat(VkFormat f);
-// D3D11 texel encodings, for clears done through copies: writes GetFormatInfo(f).bytesPerElement bytes.
-void PackUint(FORMAT f, const uint32_t v[4], uint8_t* out);
-void PackFloat(FORMAT f, const float v[4], uint8_t* out);
 bool IsIntegerFormat(FORMAT f);
 VkCompareOp CompareOp(COMPARISON_FUNC f);
 // The layout a depth-stencil view is rendered in, from its read-only flags.
@@ -212,7 +209,7 @@ struct VkTextureObj final : TrackedObject {
   VkImageAspectFlags aspects = 0;
   uint32_t layers = 1;              // Vulkan array layers (1 for 3D)
   std::vector<AccessState> states;  // per subresource, D3D order: layer * mipLevels + mip
-  AccessState& State(uint32_t mip, uint32_t layer) { return states[size_t(layer) * shape.mipLevels + mip]; }
+  AccessState& State(uint32_t mip, uint32_t layer) { return states[CalcSubresource(mip, layer, shape.mipLevels)]; }
   // Staging textures: memory laid out as D3D11 maps it, and for depth-stencil families the planes
   // Vulkan copies use (depth and stencil separately); the CPU layout is rebuilt from the planes on Map.
   struct Sub {
@@ -461,8 +458,7 @@ class VulkanContext final : public detail::ContextBackend {
                 uint32_t argsOffset) override;
   void ClearRenderTargetView(RenderTargetView* rtv, const float rgba[4]) override;
   void ClearDepthStencilView(DepthStencilView* dsv, uint32_t clearFlags, float depth, uint8_t stencil) override;
-  void ClearUnorderedAccessViewUint(UnorderedAccessView* uav, const uint32_t values[4]) override;
-  void ClearUnorderedAccessViewFloat(UnorderedAccessView* uav, const float values[4]) override;
+  void ClearUnorderedAccessView(UnorderedAccessView* uav, const detail::UavClearValue& value) override;
   void CopyResource(Resource* dst, Resource* src) override;
   void CopySubresourceRegion(Resource* dst, uint32_t dstSubresource, uint32_t dstX, uint32_t dstY, uint32_t dstZ, Resource* src,
                              uint32_t srcSubresource, const BOX& srcBox) override;

@@ -12,7 +12,7 @@ void MergePlanes(VkTextureObj& t) {
   const TextureShape& s = t.shape;
   bool d24 = GetFormatInfo(s.format).bytesPerElement == 4;
   for (uint32_t i = 0; i < s.subresourceCount(); ++i) {
-    uint32_t mip = i % s.mipLevels;
+    uint32_t mip = detail::SubresourceOf(s, i).mip;
     const VkTextureObj::Sub& sub = t.subs[i];
     uint64_t texels = uint64_t(s.mipWidth(mip)) * s.mipHeight(mip) * s.mipDepth(mip);
     uint8_t* main = t.main.mapped + sub.offset;
@@ -37,7 +37,7 @@ void SplitPlanes(VkTextureObj& t) {
   const TextureShape& s = t.shape;
   bool d24 = GetFormatInfo(s.format).bytesPerElement == 4;
   for (uint32_t i = 0; i < s.subresourceCount(); ++i) {
-    uint32_t mip = i % s.mipLevels;
+    uint32_t mip = detail::SubresourceOf(s, i).mip;
     const VkTextureObj::Sub& sub = t.subs[i];
     uint64_t texels = uint64_t(s.mipWidth(mip)) * s.mipHeight(mip) * s.mipDepth(mip);
     const uint8_t* main = t.main.mapped + sub.offset;
@@ -125,7 +125,7 @@ bool VulkanContext::Map(Resource* resource, uint32_t sub, MAP type, uint32_t fla
   if (t.staging) return MapStaging(t, sub, type, flags, out);
   // USAGE_DYNAMIC textures (WRITE_DISCARD only): CPU memory, uploaded in order on Unmap.
   const TextureShape& s = t.shape;
-  uint32_t mip = sub % s.mipLevels;
+  uint32_t mip = detail::SubresourceOf(s, sub).mip;
   uint32_t row = s.mipWidth(mip) * GetFormatInfo(s.format).bytesPerElement;
   std::vector<uint8_t>& scratch = t.mapScratch[sub];
   scratch.assign(size_t(row) * s.mipHeight(mip) * s.mipDepth(mip), 0);
@@ -151,7 +151,7 @@ void VulkanContext::Unmap(Resource* resource, uint32_t sub) {
   auto it = t.mapScratch.find(sub);
   if (it == t.mapScratch.end()) return;
   const TextureShape& s = t.shape;
-  uint32_t mip = sub % s.mipLevels;
+  uint32_t mip = detail::SubresourceOf(s, sub).mip;
   uint32_t row = s.mipWidth(mip) * GetFormatInfo(s.format).bytesPerElement;
   BOX box{0, 0, 0, s.mipWidth(mip), s.mipHeight(mip), s.mipDepth(mip)};
   UploadToImage(t, sub, box, it->second.data(), row, row * s.mipHeight(mip));

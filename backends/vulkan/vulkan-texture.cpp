@@ -67,7 +67,7 @@ void CreateStaging(VulkanDevice* dev, VkTextureObj& t, const SUBRESOURCE_DATA* i
   if (!init) return;
   for (uint32_t i = 0; i < s.subresourceCount(); ++i) {
     const VkTextureObj::Sub& sub = t.subs[i];
-    uint32_t mip = i % s.mipLevels;
+    uint32_t mip = detail::SubresourceOf(s, i).mip;
     const SUBRESOURCE_DATA& sd = init[i];
     uint32_t rowPitch = sd.SysMemPitch ? sd.SysMemPitch : sub.rowPitch;
     uint32_t slicePitch = sd.SysMemSlicePitch ? sd.SysMemSlicePitch : rowPitch * s.mipHeight(mip);
@@ -165,8 +165,8 @@ std::unique_ptr<VkTextureObj> CreateTextureObj(VulkanDevice* dev, Texture& textu
 
   if (init) {
     for (uint32_t i = 0; i < s.subresourceCount(); ++i) {
-      uint32_t mip = i % s.mipLevels;
-      BOX box{0, 0, 0, s.mipWidth(mip), s.mipHeight(mip), s.mipDepth(mip)};
+      uint32_t mip = detail::SubresourceOf(s, i).mip;
+      BOX box = detail::SubresourceOf(s, i).box();
       const SUBRESOURCE_DATA& sd = init[i];
       uint32_t rowPitch = sd.SysMemPitch ? sd.SysMemPitch : s.mipWidth(mip) * GetFormatInfo(s.format).bytesPerElement;
       uint32_t slicePitch = sd.SysMemSlicePitch ? sd.SysMemSlicePitch : rowPitch * s.mipHeight(mip);

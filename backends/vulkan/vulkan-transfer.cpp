@@ -8,11 +8,6 @@
 namespace sp::vk {
 namespace {
 
-struct SubLoc {
-  uint32_t mip, layer;
-};
-
-SubLoc Locate(const TextureShape& s, uint32_t sub) { return {sub % s.mipLevels, sub / s.mipLevels}; }
 
 bool HasStencil(const VkTextureObj& t) { return (t.aspects & VK_IMAGE_ASPECT_STENCIL_BIT) != 0; }
 
@@ -44,7 +39,7 @@ void VulkanContext::ZeroBuffer(VkBufferObj& b) {
 }
 
 void VulkanContext::UploadToImage(VkTextureObj& t, uint32_t sub, const BOX& box, const void* data, uint32_t rowPitch, uint32_t depthPitch) {
-  SubLoc loc = Locate(t.shape, sub);
+  detail::Subresource loc = detail::SubresourceOf(t.shape, sub);
   uint32_t w = box.right - box.left, h = box.bottom - box.top, d = box.back - box.front;
   uint32_t texel = D3DTexelSize(t);
   uint64_t texels = uint64_t(w) * h * d;
@@ -53,7 +48,7 @@ void VulkanContext::UploadToImage(VkTextureObj& t, uint32_t sub, const BOX& box,
   if (d == 1 && depthPitch == 0) depthPitch = rowPitch * h;
   VkCommandBuffer cmd = Cmd();
   VkBufferImageCopy regions[2]{};
-  VkImageSubresourceLayers layers{t.aspects, loc.mip, loc.layer, 1};
+  VkImageSubresourceLayers layers{t.aspects, loc.mip, loc.slice, 1};
   VkOffset3D offset{int32_t(box.left), int32_t(box.top), int32_t(box.front)};
   VkExtent3D extent{w, h, d};
   if (HasStencil(t)) {
@@ -75,9 +70,9 @@ void VulkanContext::UploadToImage(VkTextureObj& t, uint32_t sub, const BOX& box,
             sp.ptr[i] = p[4];
           }
         }
-    regions[0] = {dp.offset, 0, 0, {VK_IMAGE_ASPECT_DEPTH_BIT, loc.mip, loc.layer, 1}, offset, extent};
-    regions[1] = {sp.offset, 0, 0, {VK_IMAGE_ASPECT_STENCIL_BIT, loc.mip, loc.layer, 1}, offset, extent};
-    UseImage(t, loc.mip, 1, loc.layer, 1, access::TransferWrite());
+    regions[0] = {dp.offset, 0, 0, {VK_IMAGE_ASPECT_DEPTH_BIT, loc.mip, loc.slice, 1}, offset, extent};
+    regions[1] = {sp.offset, 0, 0, {VK_IMAGE_ASPECT_STENCIL_BIT, loc.mip, loc.slice, 1}, offset, extent};
+    UseImage(t, loc.mip, 1, loc.slice, 1, access::TransferWrite());
     FlushBarriers();
     // The two spans may lie in different ring chunks (different VkBuffers).
     vkCmdCopyBufferToImage(cmd, dp.buffer, t.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &regions[0]);
@@ -91,7 +86,7 @@ void VulkanContext::UploadToImage(VkTextureObj& t, uint32_t sub, const BOX& box,
     for (uint32_t y = 0; y < h; ++y)
       std::memcpy(up.ptr + (size_t(z) * h + y) * row, src + size_t(z) * depthPitch + size_t(y) * rowPitch, row);
   regions[0] = {up.offset, 0, 0, layers, offset, extent};
-  UseImage(t, loc.mip, 1, loc.layer, 1, access::TransferWrite());
+  UseImage(t, loc.mip, 1, loc.slice, 1, access::TransferWrite());
   FlushBarriers();
   vkCmdCopyBufferToImage(cmd, up.buffer, t.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, regions);
   CountWork();
@@ -141,9 +136,7 @@ void VulkanContext::CopyResource(Resource* dst, Resource* src) {
   }
   const TextureShape& s = TextureOf(src).shape;
   for (uint32_t i = 0; i < s.subresourceCount(); ++i) {
-    uint32_t mip = i % s.mipLevels;
-    BOX box{0, 0, 0, s.mipWidth(mip), s.mipHeight(mip), s.mipDepth(mip)};
-    CopySubresourceRegion(dst, i, 0, 0, 0, src, i, box);
+    CopySubresourceRegion(dst, i, 0, 0, 0, src, i, detail::SubresourceOf(s, i).box());
   }
 }
 
@@ -170,7 +163,7 @@ void VulkanContext::CopySubresourceRegion(Resource* dst, uint32_t dstSub, uint32
 
 void VulkanContext::CopyImageToImage(VkTextureObj& s, uint32_t srcSub, VkTextureObj& d, uint32_t dstSub, const BOX& box, uint32_t x, uint32_t y,
                                      uint32_t z) {
-  SubLoc sl = Locate(s.shape, srcSub), dl = Locate(d.shape, dstSub);
+  detail::Subresource sl = detail::SubresourceOf(s.shape, srcSub), dl = detail::SubresourceOf(d.shape, dstSub);
   VkExtent3D extent{box.right - box.left, box.bottom - box.top, box.back - box.front};
   VkOffset3D srcOff{int32_t(box.left), int32_t(box.top), int32_t(box.front)}, dstOff{int32_t(x), int32_t(y), int32_t(z)};
   VkCommandBuffer cmd = Cmd();
@@ -182,10 +175,10 @@ void VulkanContext::CopyImageToImage(VkTextureObj& s, uint32_t srcSub, VkTexture
     Access r = access::TransferRead(), w = access::TransferWrite();
     r.layout = srcLayout;
     w.layout = dstLayout;
-    UseImage(s, sl.mip, 1, sl.layer, 1, r);
-    UseImage(d, dl.mip, 1, dl.layer, 1, w);
+    UseImage(s, sl.mip, 1, sl.slice, 1, r);
+    UseImage(d, dl.mip, 1, dl.slice, 1, w);
     FlushBarriers();
-    VkImageCopy c{{s.aspects, sl.mip, sl.layer, 1}, srcOff, {d.aspects, dl.mip, dl.layer, 1}, dstOff, extent};
+    VkImageCopy c{{s.aspects, sl.mip, sl.slice, 1}, srcOff, {d.aspects, dl.mip, dl.slice, 1}, dstOff, extent};
     vkCmdCopyImage(cmd, s.image, srcLayout, d.image, dstLayout, 1, &c);
     return;
   }
@@ -198,28 +191,28 @@ void VulkanContext::CopyImageToImage(VkTextureObj& s, uint32_t srcSub, VkTexture
   UploadSpan tmp = Upload(VkDeviceSize(texel) * extent.width * extent.height * extent.depth, 16);
   VkImageAspectFlags sa = depthS ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT;
   VkImageAspectFlags da = depthD ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT;
-  UseImage(s, sl.mip, 1, sl.layer, 1, access::TransferRead());
+  UseImage(s, sl.mip, 1, sl.slice, 1, access::TransferRead());
   FlushBarriers();
-  VkBufferImageCopy r1{tmp.offset, 0, 0, {sa, sl.mip, sl.layer, 1}, srcOff, extent};
+  VkBufferImageCopy r1{tmp.offset, 0, 0, {sa, sl.mip, sl.slice, 1}, srcOff, extent};
   vkCmdCopyImageToBuffer(cmd, s.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, tmp.buffer, 1, &r1);
   AccessState scratch;
   UseRange(scratch, access::TransferWrite());
   UseRange(scratch, access::TransferRead());
-  UseImage(d, dl.mip, 1, dl.layer, 1, access::TransferWrite());
+  UseImage(d, dl.mip, 1, dl.slice, 1, access::TransferWrite());
   FlushBarriers();
-  VkBufferImageCopy r2{tmp.offset, 0, 0, {da, dl.mip, dl.layer, 1}, dstOff, extent};
+  VkBufferImageCopy r2{tmp.offset, 0, 0, {da, dl.mip, dl.slice, 1}, dstOff, extent};
   vkCmdCopyBufferToImage(cmd, tmp.buffer, d.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &r2);
 }
 
 void VulkanContext::CopyImageToStaging(VkTextureObj& s, uint32_t srcSub, VkTextureObj& d, uint32_t dstSub, const BOX& box, uint32_t x, uint32_t y,
                                        uint32_t z) {
-  SubLoc sl = Locate(s.shape, srcSub), dl = Locate(d.shape, dstSub);
+  detail::Subresource sl = detail::SubresourceOf(s.shape, srcSub), dl = detail::SubresourceOf(d.shape, dstSub);
   const VkTextureObj::Sub& ds = d.subs[dstSub];
   VkExtent3D extent{box.right - box.left, box.bottom - box.top, box.back - box.front};
   VkOffset3D srcOff{int32_t(box.left), int32_t(box.top), int32_t(box.front)};
   uint32_t w = d.shape.mipWidth(dl.mip), h = d.shape.mipHeight(dl.mip);
   VkCommandBuffer cmd = Cmd();
-  UseImage(s, sl.mip, 1, sl.layer, 1, access::TransferRead());
+  UseImage(s, sl.mip, 1, sl.slice, 1, access::TransferRead());
   uint64_t serial = dev_->recordingSerial;
   d.lastUse = d.lastWrite = serial;
   if (d.usesPlanes) {
@@ -227,8 +220,8 @@ void VulkanContext::CopyImageToStaging(VkTextureObj& s, uint32_t srcSub, VkTextu
     UseRange(d.stencilPlaneState, access::TransferWrite());
     FlushBarriers();
     VkDeviceSize first = (VkDeviceSize(z) * h + y) * w + x;
-    VkBufferImageCopy r[2] = {{d.depthPlane.offset + ds.depthOffset + first * 4, w, h, {VK_IMAGE_ASPECT_DEPTH_BIT, sl.mip, sl.layer, 1}, srcOff, extent},
-                              {d.stencilPlane.offset + ds.stencilOffset + first, w, h, {VK_IMAGE_ASPECT_STENCIL_BIT, sl.mip, sl.layer, 1}, srcOff, extent}};
+    VkBufferImageCopy r[2] = {{d.depthPlane.offset + ds.depthOffset + first * 4, w, h, {VK_IMAGE_ASPECT_DEPTH_BIT, sl.mip, sl.slice, 1}, srcOff, extent},
+                              {d.stencilPlane.offset + ds.stencilOffset + first, w, h, {VK_IMAGE_ASPECT_STENCIL_BIT, sl.mip, sl.slice, 1}, srcOff, extent}};
     vkCmdCopyImageToBuffer(cmd, s.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, d.depthPlane.buffer, 1, &r[0]);
     vkCmdCopyImageToBuffer(cmd, s.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, d.stencilPlane.buffer, 1, &r[1]);
     d.planesNewer = true;
@@ -238,27 +231,27 @@ void VulkanContext::CopyImageToStaging(VkTextureObj& s, uint32_t srcSub, VkTextu
   FlushBarriers();
   uint32_t texel = D3DTexelSize(d);
   VkBufferImageCopy r{d.main.offset + ds.offset + VkDeviceSize(z) * ds.depthPitch + VkDeviceSize(y) * ds.rowPitch + VkDeviceSize(x) * texel,
-                      ds.rowPitch / texel, h, {s.aspects, sl.mip, sl.layer, 1}, srcOff, extent};
+                      ds.rowPitch / texel, h, {s.aspects, sl.mip, sl.slice, 1}, srcOff, extent};
   vkCmdCopyImageToBuffer(cmd, s.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, d.main.buffer, 1, &r);
 }
 
 void VulkanContext::CopyStagingToImage(VkTextureObj& s, uint32_t srcSub, VkTextureObj& d, uint32_t dstSub, const BOX& box, uint32_t x, uint32_t y,
                                        uint32_t z) {
-  SubLoc sl = Locate(s.shape, srcSub), dl = Locate(d.shape, dstSub);
+  detail::Subresource sl = detail::SubresourceOf(s.shape, srcSub), dl = detail::SubresourceOf(d.shape, dstSub);
   const VkTextureObj::Sub& ss = s.subs[srcSub];
   VkExtent3D extent{box.right - box.left, box.bottom - box.top, box.back - box.front};
   VkOffset3D dstOff{int32_t(x), int32_t(y), int32_t(z)};
   uint32_t w = s.shape.mipWidth(sl.mip), h = s.shape.mipHeight(sl.mip);
   VkCommandBuffer cmd = Cmd();
-  UseImage(d, dl.mip, 1, dl.layer, 1, access::TransferWrite());
+  UseImage(d, dl.mip, 1, dl.slice, 1, access::TransferWrite());
   s.lastUse = dev_->recordingSerial;
   if (s.usesPlanes) {
     UseRange(s.depthPlaneState, access::TransferRead());
     UseRange(s.stencilPlaneState, access::TransferRead());
     FlushBarriers();
     VkDeviceSize first = (VkDeviceSize(box.front) * h + box.top) * w + box.left;
-    VkBufferImageCopy r[2] = {{s.depthPlane.offset + ss.depthOffset + first * 4, w, h, {VK_IMAGE_ASPECT_DEPTH_BIT, dl.mip, dl.layer, 1}, dstOff, extent},
-                              {s.stencilPlane.offset + ss.stencilOffset + first, w, h, {VK_IMAGE_ASPECT_STENCIL_BIT, dl.mip, dl.layer, 1}, dstOff, extent}};
+    VkBufferImageCopy r[2] = {{s.depthPlane.offset + ss.depthOffset + first * 4, w, h, {VK_IMAGE_ASPECT_DEPTH_BIT, dl.mip, dl.slice, 1}, dstOff, extent},
+                              {s.stencilPlane.offset + ss.stencilOffset + first, w, h, {VK_IMAGE_ASPECT_STENCIL_BIT, dl.mip, dl.slice, 1}, dstOff, extent}};
     vkCmdCopyBufferToImage(cmd, s.depthPlane.buffer, d.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &r[0]);
     vkCmdCopyBufferToImage(cmd, s.stencilPlane.buffer, d.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &r[1]);
     return;
@@ -267,7 +260,7 @@ void VulkanContext::CopyStagingToImage(VkTextureObj& s, uint32_t srcSub, VkTextu
   FlushBarriers();
   uint32_t texel = D3DTexelSize(s);
   VkBufferImageCopy r{s.main.offset + ss.offset + VkDeviceSize(box.front) * ss.depthPitch + VkDeviceSize(box.top) * ss.rowPitch + VkDeviceSize(box.left) * texel,
-                      ss.rowPitch / texel, h, {d.aspects, dl.mip, dl.layer, 1}, dstOff, extent};
+                      ss.rowPitch / texel, h, {d.aspects, dl.mip, dl.slice, 1}, dstOff, extent};
   vkCmdCopyBufferToImage(cmd, s.main.buffer, d.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &r);
 }
 
@@ -294,8 +287,8 @@ void VulkanContext::CopyStagingToStaging(VkTextureObj& s, uint32_t srcSub, VkTex
     UseRange(d.depthPlaneState, access::TransferWrite());
     UseRange(d.stencilPlaneState, access::TransferWrite());
     FlushBarriers();
-    uint32_t mip = srcSub % s.shape.mipLevels;
-    VkDeviceSize texels = VkDeviceSize(s.shape.mipWidth(mip)) * s.shape.mipHeight(mip) * s.shape.mipDepth(mip);
+    const detail::Subresource sr = detail::SubresourceOf(s.shape, srcSub);
+    VkDeviceSize texels = VkDeviceSize(sr.width) * sr.height * sr.depth;
     VkBufferCopy dc{s.depthPlane.offset + ss.depthOffset, d.depthPlane.offset + ds.depthOffset, texels * 4};
     VkBufferCopy sc{s.stencilPlane.offset + ss.stencilOffset, d.stencilPlane.offset + ds.stencilOffset, texels};
     vkCmdCopyBuffer(cmd, s.depthPlane.buffer, d.depthPlane.buffer, 1, &dc);

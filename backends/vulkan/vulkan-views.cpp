@@ -22,22 +22,18 @@ struct ImageViewShape {
   uint32_t baseLayer = 0, layers = 1;
 };
 
-ImageViewShape SrvShape(const SHADER_RESOURCE_VIEW_DESC& d, const ViewRange& r) {
-  switch (d.ViewDimension) {
-    case SRV_DIMENSION_TEXTURE1D: return {VK_IMAGE_VIEW_TYPE_1D, r.firstSlice, 1};
-    case SRV_DIMENSION_TEXTURE1DARRAY: return {VK_IMAGE_VIEW_TYPE_1D_ARRAY, r.firstSlice, r.sliceCount};
-    case SRV_DIMENSION_TEXTURE2D:
-    case SRV_DIMENSION_TEXTURE2DMS: return {VK_IMAGE_VIEW_TYPE_2D, r.firstSlice, 1};
-    case SRV_DIMENSION_TEXTURE2DARRAY:
-    case SRV_DIMENSION_TEXTURE2DMSARRAY: return {VK_IMAGE_VIEW_TYPE_2D_ARRAY, r.firstSlice, r.sliceCount};
-    case SRV_DIMENSION_TEXTURE3D: return {VK_IMAGE_VIEW_TYPE_3D, 0, 1};
-    case SRV_DIMENSION_TEXTURECUBE: return {VK_IMAGE_VIEW_TYPE_CUBE, r.firstSlice, 6};
-    case SRV_DIMENSION_TEXTURECUBEARRAY: return {VK_IMAGE_VIEW_TYPE_CUBE_ARRAY, r.firstSlice, r.sliceCount};
-    default: return {};
+ImageViewShape ShapeOf(ViewShape shape, const ViewRange& r) {
+  switch (shape) {
+    case ViewShape::Texture1D: return {VK_IMAGE_VIEW_TYPE_1D, r.firstSlice, 1};
+    case ViewShape::Texture1DArray: return {VK_IMAGE_VIEW_TYPE_1D_ARRAY, r.firstSlice, r.sliceCount};
+    case ViewShape::Texture2DArray:
+    case ViewShape::Texture2DMSArray: return {VK_IMAGE_VIEW_TYPE_2D_ARRAY, r.firstSlice, r.sliceCount};
+    case ViewShape::Texture3D: return {VK_IMAGE_VIEW_TYPE_3D, 0, 1};
+    case ViewShape::TextureCube: return {VK_IMAGE_VIEW_TYPE_CUBE, r.firstSlice, 6};
+    case ViewShape::TextureCubeArray: return {VK_IMAGE_VIEW_TYPE_CUBE_ARRAY, r.firstSlice, r.sliceCount};
+    default: return {VK_IMAGE_VIEW_TYPE_2D, r.firstSlice, 1};
   }
 }
-
-bool IsArrayDim(uint32_t d, uint32_t a, uint32_t b) { return d == a || d == b; }
 
 }  // namespace
 
@@ -45,29 +41,25 @@ std::unique_ptr<VkViewObj> CreateViewObj(VulkanDevice* dev, View& view) {
   auto v = std::make_unique<VkViewObj>();
   v->dev = dev;
   v->owner = &view;
-  if (dynamic_cast<ShaderResourceView*>(&view)) v->kind = VkViewObj::SRV;
-  else if (dynamic_cast<RenderTargetView*>(&view)) v->kind = VkViewObj::RTV;
-  else if (dynamic_cast<DepthStencilView*>(&view)) v->kind = VkViewObj::DSV;
-  else v->kind = VkViewObj::UAV;
+  switch (view.Kind()) {
+    case ViewKind::ShaderResource: v->kind = VkViewObj::SRV; break;
+    case ViewKind::RenderTarget: v->kind = VkViewObj::RTV; break;
+    case ViewKind::DepthStencil: v->kind = VkViewObj::DSV; break;
+    case ViewKind::UnorderedAccess: v->kind = VkViewObj::UAV; break;
+  }
   const char* call = CallFor(v->kind);
   std::string object = DescribeObject(&view);
   const ViewRange& r = view.Range();
   Resource* res = view.GetResource();
   const VkPhysicalDeviceLimits& lim = dev->props.limits;
 
-  if (res->GetType() == RESOURCE_DIMENSION_BUFFER) {
+  if (view.IsBuffer()) {
     VkBufferObj& b = BufferOf(res);
     v->buffer = &b;
     v->byteOffset = r.firstByte;
     v->byteSize = r.byteCount;
-    bool structured = b.desc.MiscFlags & RESOURCE_MISC_BUFFER_STRUCTURED;
-    bool raw = false;
-    if (v->kind == VkViewObj::SRV) {
-      const auto& d = static_cast<ShaderResourceView&>(view).GetDesc();
-      raw = d.ViewDimension == SRV_DIMENSION_BUFFEREX && (d.BufferEx.Flags & BUFFEREX_SRV_FLAG_RAW);
-    } else {
+    if (v->kind == VkViewObj::UAV) {
       const auto& d = static_cast<UnorderedAccessView&>(view).GetDesc();
-      raw = d.Buffer.Flags & BUFFER_UAV_FLAG_RAW;
       if (d.Buffer.Flags & (BUFFER_UAV_FLAG_APPEND | BUFFER_UAV_FLAG_COUNTER)) {
         v->counter = dev->alloc.AllocateBuffer(4, MemoryKind::Device, call, object);
         if (v->counter.mapped) {
@@ -81,7 +73,7 @@ std::unique_ptr<VkViewObj> CreateViewObj(VulkanDevice* dev, View& view) {
         }
       }
     }
-    v->texel = !structured && !raw;
+    v->texel = view.Shape() == ViewShape::TypedBuffer;
     if (v->texel) {
       v->format = VkFormatOf(view.ViewFormat());
       VkFormatProperties fp;
@@ -129,53 +121,32 @@ std::unique_ptr<VkViewObj> CreateViewObj(VulkanDevice* dev, View& view) {
   VkImageUsageFlags usage = 0;
   switch (v->kind) {
     case VkViewObj::SRV: {
-      const auto& d = static_cast<ShaderResourceView&>(view).GetDesc();
-      shape = SrvShape(d, r);
+      shape = ShapeOf(view.Shape(), r);
       usage = VK_IMAGE_USAGE_SAMPLED_BIT;
       if (shape.type == VK_IMAGE_VIEW_TYPE_CUBE_ARRAY && !dev->feat.cubeArray)
         Throw(ErrorId::NOT_SUPPORTED, call, object, "TextureCubeArray views need imageCubeArray, which this device lacks");
       break;
     }
     case VkViewObj::RTV: {
-      const auto& d = static_cast<RenderTargetView&>(view).GetDesc();
       usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
-      if (is3D) {
-        shape = {VK_IMAGE_VIEW_TYPE_2D_ARRAY, r.firstSlice, r.sliceCount};
-      } else {
-        bool array = IsArrayDim(d.ViewDimension, RTV_DIMENSION_TEXTURE1DARRAY, RTV_DIMENSION_TEXTURE2DARRAY) || d.ViewDimension == RTV_DIMENSION_TEXTURE2DMSARRAY;
-        bool oneD = IsArrayDim(d.ViewDimension, RTV_DIMENSION_TEXTURE1D, RTV_DIMENSION_TEXTURE1DARRAY);
-        shape = {oneD ? (array ? VK_IMAGE_VIEW_TYPE_1D_ARRAY : VK_IMAGE_VIEW_TYPE_1D) : (array ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D),
-                 r.firstSlice, r.sliceCount};
-      }
+      // A 3D mip renders as a 2D array of its W slices.
+      shape = is3D ? ImageViewShape{VK_IMAGE_VIEW_TYPE_2D_ARRAY, r.firstSlice, r.sliceCount} : ShapeOf(view.Shape(), r);
       break;
     }
     case VkViewObj::DSV: {
       const auto& d = static_cast<DepthStencilView&>(view).GetDesc();
       usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;
-      bool array = d.ViewDimension == DSV_DIMENSION_TEXTURE1DARRAY || d.ViewDimension == DSV_DIMENSION_TEXTURE2DARRAY ||
-                   d.ViewDimension == DSV_DIMENSION_TEXTURE2DMSARRAY;
-      bool oneD = d.ViewDimension == DSV_DIMENSION_TEXTURE1D || d.ViewDimension == DSV_DIMENSION_TEXTURE1DARRAY;
-      shape = {oneD ? (array ? VK_IMAGE_VIEW_TYPE_1D_ARRAY : VK_IMAGE_VIEW_TYPE_1D) : (array ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D),
-               r.firstSlice, r.sliceCount};
+      shape = ShapeOf(view.Shape(), r);
       v->depthReadOnly = d.Flags & DSV_READ_ONLY_DEPTH;
       v->stencilReadOnly = (d.Flags & DSV_READ_ONLY_STENCIL) || !(t.aspects & VK_IMAGE_ASPECT_STENCIL_BIT);
       break;
     }
     case VkViewObj::UAV: {
-      const auto& d = static_cast<UnorderedAccessView&>(view).GetDesc();
       usage = VK_IMAGE_USAGE_STORAGE_BIT;
-      switch (d.ViewDimension) {
-        case UAV_DIMENSION_TEXTURE1D: shape = {VK_IMAGE_VIEW_TYPE_1D, r.firstSlice, 1}; break;
-        case UAV_DIMENSION_TEXTURE1DARRAY: shape = {VK_IMAGE_VIEW_TYPE_1D_ARRAY, r.firstSlice, r.sliceCount}; break;
-        case UAV_DIMENSION_TEXTURE2D: shape = {VK_IMAGE_VIEW_TYPE_2D, r.firstSlice, 1}; break;
-        case UAV_DIMENSION_TEXTURE2DARRAY: shape = {VK_IMAGE_VIEW_TYPE_2D_ARRAY, r.firstSlice, r.sliceCount}; break;
-        default:
-          // A Vulkan 3D storage image always covers the whole depth of its mip.
-          if (r.firstSlice != 0 || r.sliceCount != s.mipDepth(r.firstMip))
-            Throw(ErrorId::NOT_SUPPORTED, call, object, "UAVs of part of a Texture3D's depth (FirstWSlice/WSize) are not supported on Vulkan; view the whole mip");
-          shape = {VK_IMAGE_VIEW_TYPE_3D, 0, 1};
-          break;
-      }
+      // A Vulkan 3D storage image always covers the whole depth of its mip.
+      if (view.Shape() == ViewShape::Texture3D && (r.firstSlice != 0 || r.sliceCount != s.mipDepth(r.firstMip)))
+        Throw(ErrorId::NOT_SUPPORTED, call, object, "UAVs of part of a Texture3D's depth (FirstWSlice/WSize) are not supported on Vulkan; view the whole mip");
+      shape = ShapeOf(view.Shape(), r);
       break;
     }
   }

@@ -12,7 +12,9 @@
 
 #include <sp/rhi/context.h>
 
+#include "clear-values.h"
 #include "pipeline-state.h"
+#include "subresource.h"
 
 namespace sp::detail {
 
@@ -56,8 +58,8 @@ class ContextBackend {
                         Buffer* argsBuffer, uint32_t argsOffset) = 0;
   virtual void ClearRenderTargetView(RenderTargetView* rtv, const float rgba[4]) = 0;
   virtual void ClearDepthStencilView(DepthStencilView* dsv, uint32_t clearFlags, float depth, uint8_t stencil) = 0;
-  virtual void ClearUnorderedAccessViewUint(UnorderedAccessView* uav, const uint32_t values[4]) = 0;
-  virtual void ClearUnorderedAccessViewFloat(UnorderedAccessView* uav, const float values[4]) = 0;
+  // Both D3D11 UAV clears, already packed into the bits the view's memory must hold.
+  virtual void ClearUnorderedAccessView(UnorderedAccessView* uav, const UavClearValue& value) = 0;
   virtual void CopyResource(Resource* dst, Resource* src) = 0;
   // srcBox is never null here (the core fills the whole subresource when D3D11's is null).
   virtual void CopySubresourceRegion(Resource* dst, uint32_t dstSubresource, uint32_t dstX, uint32_t dstY, uint32_t dstZ,

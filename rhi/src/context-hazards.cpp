@@ -14,8 +14,8 @@ namespace {
 // The part of a view that is written when it is bound for output.
 bool WrittenRange(const View* v, ViewRange* out) {
   *out = v->Range();
-  if (auto* dsv = dynamic_cast<const DepthStencilView*>(v)) {
-    uint32_t f = dsv->GetDesc().Flags;
+  if (v->Kind() == ViewKind::DepthStencil) {
+    uint32_t f = static_cast<const DepthStencilView*>(v)->GetDesc().Flags;
     out->depth = !(f & DSV_READ_ONLY_DEPTH);
     out->stencil = out->stencil && !(f & DSV_READ_ONLY_STENCIL);
     return out->depth || out->stencil;

@@ -432,7 +432,7 @@ void DeviceContext::ClearDepthStencilView(DepthStencilView* dsv, uint32_t flags,
 void DeviceContext::ClearUnorderedAccessViewUint(UnorderedAccessView* uav, const uint32_t values[4]) {
   if (!uav || !values) Fail(ErrorId::INVALID_ARGUMENT, "ClearUnorderedAccessViewUint", Describe(uav), "null argument");
   CheckOwner(device_, uav, "ClearUnorderedAccessViewUint");
-  backend_->ClearUnorderedAccessViewUint(uav, values);
+  backend_->ClearUnorderedAccessView(uav, ResolveUavClearUint(*uav, values));
 }
 
 void DeviceContext::ClearUnorderedAccessViewFloat(UnorderedAccessView* uav, const float values[4]) {
@@ -442,7 +442,7 @@ void DeviceContext::ClearUnorderedAccessViewFloat(UnorderedAccessView* uav, cons
   FormatKind k = GetFormatInfo(uav->ViewFormat()).kind;
   if (k != FormatKind::Float && k != FormatKind::UNorm && k != FormatKind::SNorm && k != FormatKind::UNormSRGB)
     Fail(ErrorId::INVALID_ARGUMENT, call, Describe(uav), "ClearUnorderedAccessViewFloat needs a float/unorm/snorm typed view; use ClearUnorderedAccessViewUint");
-  backend_->ClearUnorderedAccessViewFloat(uav, values);
+  backend_->ClearUnorderedAccessView(uav, ResolveUavClearFloat(*uav, values));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -467,12 +467,7 @@ static BOX SubresourceBox(const Resource* r, uint32_t sub) {
     b.bottom = b.back = 1;
     return b;
   }
-  const TextureShape& s = AsTexture(r)->Shape();
-  uint32_t mip = sub % s.mipLevels;
-  b.right = s.mipWidth(mip);
-  b.bottom = s.mipHeight(mip);
-  b.back = s.mipDepth(mip);
-  return b;
+  return SubresourceOf(AsTexture(r)->Shape(), sub).box();
 }
 
 static bool SameCopyFamily(FORMAT a, FORMAT b) {
@@ -562,7 +557,7 @@ void DeviceContext::UpdateSubresource(Resource* dst, uint32_t sub, const BOX* pB
       Fail(ErrorId::USAGE_INVALID, call, Describe(dst), "UpdateSubresource needs a USAGE_DEFAULT resource (use Map for " + UsageName(s.usage) + ")");
     if (s.sampleCount > 1) Fail(ErrorId::COPY_INVALID, call, Describe(dst), "multisampled resources cannot be updated");
     if (s.bindFlags & BIND_DEPTH_STENCIL) Fail(ErrorId::COPY_INVALID, call, Describe(dst), "depth-stencil resources cannot be updated");
-    uint32_t w = pBox ? pBox->right - pBox->left : s.mipWidth(sub % s.mipLevels);
+    uint32_t w = pBox ? pBox->right - pBox->left : SubresourceOf(s, sub).width;
     if (s.dimension != RESOURCE_DIMENSION_TEXTURE1D && rowPitch < w * GetFormatInfo(s.format).bytesPerElement)
       Fail(ErrorId::INVALID_ARGUMENT, call, Describe(dst), "SrcRowPitch " + std::to_string(rowPitch) + " is less than a row of the box");
   }

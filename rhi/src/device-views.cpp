@@ -105,6 +105,63 @@ ViewRange OutputRange(const ViewCheck& c, const TextureShape& s, OutputKind kind
   return r;
 }
 
+// The ViewShape of each desc, after the core has validated it. Buffer views are told apart by
+// the buffer's structured flag and the view's raw flag.
+ViewShape BufferShape(const Resource* r, bool raw) {
+  if (static_cast<const Buffer*>(r)->GetDesc().MiscFlags & RESOURCE_MISC_BUFFER_STRUCTURED) return ViewShape::StructuredBuffer;
+  return raw ? ViewShape::RawBuffer : ViewShape::TypedBuffer;
+}
+
+ViewShape ShapeOf(const Resource* r, const SHADER_RESOURCE_VIEW_DESC& d) {
+  switch (d.ViewDimension) {
+    case SRV_DIMENSION_BUFFER: return BufferShape(r, false);
+    case SRV_DIMENSION_BUFFEREX: return BufferShape(r, d.BufferEx.Flags & BUFFEREX_SRV_FLAG_RAW);
+    case SRV_DIMENSION_TEXTURE1D: return ViewShape::Texture1D;
+    case SRV_DIMENSION_TEXTURE1DARRAY: return ViewShape::Texture1DArray;
+    case SRV_DIMENSION_TEXTURE2DARRAY: return ViewShape::Texture2DArray;
+    case SRV_DIMENSION_TEXTURE2DMS: return ViewShape::Texture2DMS;
+    case SRV_DIMENSION_TEXTURE2DMSARRAY: return ViewShape::Texture2DMSArray;
+    case SRV_DIMENSION_TEXTURE3D: return ViewShape::Texture3D;
+    case SRV_DIMENSION_TEXTURECUBE: return ViewShape::TextureCube;
+    case SRV_DIMENSION_TEXTURECUBEARRAY: return ViewShape::TextureCubeArray;
+    default: return ViewShape::Texture2D;
+  }
+}
+
+ViewShape ShapeOf(const RENDER_TARGET_VIEW_DESC& d) {
+  switch (d.ViewDimension) {
+    case RTV_DIMENSION_TEXTURE1D: return ViewShape::Texture1D;
+    case RTV_DIMENSION_TEXTURE1DARRAY: return ViewShape::Texture1DArray;
+    case RTV_DIMENSION_TEXTURE2DARRAY: return ViewShape::Texture2DArray;
+    case RTV_DIMENSION_TEXTURE2DMS: return ViewShape::Texture2DMS;
+    case RTV_DIMENSION_TEXTURE2DMSARRAY: return ViewShape::Texture2DMSArray;
+    case RTV_DIMENSION_TEXTURE3D: return ViewShape::Texture3D;
+    default: return ViewShape::Texture2D;
+  }
+}
+
+ViewShape ShapeOf(const DEPTH_STENCIL_VIEW_DESC& d) {
+  switch (d.ViewDimension) {
+    case DSV_DIMENSION_TEXTURE1D: return ViewShape::Texture1D;
+    case DSV_DIMENSION_TEXTURE1DARRAY: return ViewShape::Texture1DArray;
+    case DSV_DIMENSION_TEXTURE2DARRAY: return ViewShape::Texture2DArray;
+    case DSV_DIMENSION_TEXTURE2DMS: return ViewShape::Texture2DMS;
+    case DSV_DIMENSION_TEXTURE2DMSARRAY: return ViewShape::Texture2DMSArray;
+    default: return ViewShape::Texture2D;
+  }
+}
+
+ViewShape ShapeOf(const Resource* r, const UNORDERED_ACCESS_VIEW_DESC& d) {
+  switch (d.ViewDimension) {
+    case UAV_DIMENSION_BUFFER: return BufferShape(r, d.Buffer.Flags & BUFFER_UAV_FLAG_RAW);
+    case UAV_DIMENSION_TEXTURE1D: return ViewShape::Texture1D;
+    case UAV_DIMENSION_TEXTURE1DARRAY: return ViewShape::Texture1DArray;
+    case UAV_DIMENSION_TEXTURE2DARRAY: return ViewShape::Texture2DArray;
+    case UAV_DIMENSION_TEXTURE3D: return ViewShape::Texture3D;
+    default: return ViewShape::Texture2D;
+  }
+}
+
 }  // namespace
 
 Ref<ShaderResourceView> Device::CreateShaderResourceView(Resource* resource, const SHADER_RESOURCE_VIEW_DESC* pDesc) {
@@ -233,7 +290,7 @@ Ref<ShaderResourceView> Device::CreateShaderResourceView(Resource* resource, con
     if (!(s.bindFlags & BIND_DEPTH_STENCIL) && !(backend_->FormatSupportBackend(d.Format) & FORMAT_SUPPORT_SHADER_LOAD))
       Fail(ErrorId::FORMAT_UNSUPPORTED, c.call, c.obj, std::string(FormatName(d.Format)) + " cannot be read by shaders on this device");
   }
-  Ref<ShaderResourceView> v(new ShaderResourceView(this, std::static_pointer_cast<Resource>(resource->shared_from_this()), d, r));
+  Ref<ShaderResourceView> v(new ShaderResourceView(this, std::static_pointer_cast<Resource>(resource->shared_from_this()), d, r, ShapeOf(resource, d)));
   v->backend_ = backend_->CreateViewBackend(*v);
   return v;
 }
@@ -292,7 +349,7 @@ Ref<RenderTargetView> Device::CreateRenderTargetView(Resource* resource, const R
     default:
       c.dimension(false, "ViewDimension " + std::to_string(uint32_t(d.ViewDimension)) + " does not fit a texture");
   }
-  Ref<RenderTargetView> v(new RenderTargetView(this, std::static_pointer_cast<Resource>(resource->shared_from_this()), d, r));
+  Ref<RenderTargetView> v(new RenderTargetView(this, std::static_pointer_cast<Resource>(resource->shared_from_this()), d, r, ShapeOf(d)));
   v->backend_ = backend_->CreateViewBackend(*v);
   return v;
 }
@@ -353,7 +410,7 @@ Ref<DepthStencilView> Device::CreateDepthStencilView(Resource* resource, const D
   r.mipCount = 1;
   r.depth = true;
   r.stencil = fi.stencilBits > 0;
-  Ref<DepthStencilView> v(new DepthStencilView(this, std::static_pointer_cast<Resource>(resource->shared_from_this()), d, r));
+  Ref<DepthStencilView> v(new DepthStencilView(this, std::static_pointer_cast<Resource>(resource->shared_from_this()), d, r, ShapeOf(d)));
   v->backend_ = backend_->CreateViewBackend(*v);
   return v;
 }
@@ -429,7 +486,7 @@ Ref<UnorderedAccessView> Device::CreateUnorderedAccessView(Resource* resource, c
     }
     r.mipCount = 1;
   }
-  Ref<UnorderedAccessView> v(new UnorderedAccessView(this, std::static_pointer_cast<Resource>(resource->shared_from_this()), d, r));
+  Ref<UnorderedAccessView> v(new UnorderedAccessView(this, std::static_pointer_cast<Resource>(resource->shared_from_this()), d, r, ShapeOf(resource, d)));
   v->backend_ = backend_->CreateViewBackend(*v);
   return v;
 }

@@ -1,6 +1,8 @@
 // ClearUnorderedAccessView{Uint,Float} on the formats whose encodings are easy to get wrong
 // (packed 10:10:10:2 and 11:11:10, SNORM, 16-bit float), on parts of arrays and on 3D
 // textures. Expected bits follow D3D11's conversion rules, written out by hand per case.
+#include <limits>
+
 #include "rhi-test-util.h"
 
 namespace sp::test {
@@ -141,6 +143,86 @@ TEST_P(UavClearTest, TypedAndRawBufferViews) {
   for (uint32_t i = 0; i < 32; ++i) {
     uint32_t expect = i < 8 ? 0x040302ffu : i < 16 ? b[i % 4] : i < 24 ? 0xcafef00du : 0u;
     EXPECT_EQ(got[i], expect) << "word " << i;
+  }
+}
+
+// Where the backends once converted differently (Vulkan packed on the CPU rounding to nearest, GL
+// let the driver convert): D3D11 rounds toward zero into 16-bit and 11/10-bit floats, turns NaN
+// into 0 for UNORM, and rounds UNORM to nearest. Texture and typed-buffer views get the same bits.
+TEST_P(UavClearTest, FloatConversionsFollowD3D11) {
+  const float halfUlp = 1.0f / 1024, f11Ulp = 1.0f / 64, f10Ulp = 1.0f / 32;
+  const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
+  struct Case {
+    FORMAT format;
+    float values[4];
+    uint32_t expect[2];  // the texel's words (8-byte formats use both)
+  };
+  const Case cases[] = {
+      // 1 + 3/4 ulp rounds down to 1.0 (0x3c00), -(1 + 3/4 ulp) to -1.0 (0xbc00); round-to-nearest would add 1.
+      {FORMAT_R16G16_FLOAT, {1.0f + 0.75f * halfUlp, -(1.0f + 0.75f * halfUlp), 0, 0}, {0x3c00u | (0xbc00u << 16), 0}},
+      // 11-bit and 10-bit floats: 1.0 is exponent 15, mantissa 0, whatever 3/4 of an ulp is added.
+      {FORMAT_R11G11B10_FLOAT, {1.0f + 0.75f * f11Ulp, 2.0f + 1.5f * f11Ulp, 1.0f + 0.75f * f10Ulp, 0}, {(15u << 6) | ((16u << 6) << 11) | ((15u << 5) << 22), 0}},
+      // NaN -> 0, 0.5 * 255 = 127.5 -> 128, -INF -> 0, +INF -> 255.
+      {FORMAT_R8G8B8A8_UNORM, {nan, 0.5f, -inf, inf}, {0u | (128u << 8) | (0u << 16) | (255u << 24), 0}},
+      // 0.5 * 65535 = 32767.5 -> 32768; 1/3 * 65535 = 21845.
+      {FORMAT_R16G16_UNORM, {0.5f, 1.0f / 3.0f, 0, 0}, {32768u | (21845u << 16), 0}},
+      // Four halves: 1 + 3/4 ulp -> 0x3c00, 0.5 -> 0x3800, NaN stays NaN (exponent all ones, mantissa non-zero), 65520 -> the largest finite 0x7bff.
+      {FORMAT_R16G16B16A16_FLOAT, {1.0f + 0.75f * halfUlp, 0.5f, nan, 65520.0f}, {0x3c00u | (0x3800u << 16), 0x7e00u | (0x7bffu << 16)}},
+  };
+  // A NaN may come back with another payload: D3D11 only keeps it a NaN.
+  auto same = [](const Case& c, uint32_t word, uint32_t got) {
+    if (c.format != FORMAT_R16G16B16A16_FLOAT || word != 1) return got == c.expect[word];
+    return (got >> 16) == (c.expect[1] >> 16) && (got & 0x7c00u) == 0x7c00u && (got & 0x3ffu) != 0;
+  };
+  uint32_t checked = 0;
+  for (const Case& c : cases) {
+    if (!TypedUav(c.format)) continue;
+    const uint32_t words = GetFormatInfo(c.format).bytesPerElement / 4;
+    Ref<Texture2D> tex = MakeTexture2D(device(), 4, 2, c.format, BIND_UNORDERED_ACCESS);
+    ctx().ClearUnorderedAccessViewFloat(Uav2D(tex.get(), c.format).get(), c.values);
+    std::vector<uint32_t> got = ReadTextureAs<uint32_t>(device(), ctx(), tex.get());
+    for (size_t i = 0; i < got.size(); ++i) ASSERT_TRUE(same(c, i % words, got[i])) << FormatName(c.format) << " texture word " << i << ": " << std::hex << got[i];
+    // The same clear through a typed buffer view.
+    BUFFER_DESC bd;
+    bd.ByteWidth = 64;
+    bd.BindFlags = BIND_UNORDERED_ACCESS;
+    Ref<Buffer> buf = device().CreateBuffer(bd);
+    UNORDERED_ACCESS_VIEW_DESC ud;
+    ud.ViewDimension = UAV_DIMENSION_BUFFER;
+    ud.Format = c.format;
+    ud.Buffer = {0, 64 / (4 * words), 0};
+    Ref<UnorderedAccessView> uav;
+    try {
+      uav = device().CreateUnorderedAccessView(buf.get(), &ud);
+    } catch (const Error&) {
+      continue;  // not a typed-buffer UAV format on this device
+    }
+    ctx().ClearUnorderedAccessViewFloat(uav.get(), c.values);
+    got = ReadBufferAs<uint32_t>(device(), ctx(), buf.get());
+    for (size_t i = 0; i < got.size(); ++i) ASSERT_TRUE(same(c, i % words, got[i])) << FormatName(c.format) << " buffer word " << i << ": " << std::hex << got[i];
+    ++checked;
+  }
+  EXPECT_GE(checked, 3u);
+}
+
+// ClearUnorderedAccessViewUint on float formats copies the low bits of each value, unconverted.
+TEST_P(UavClearTest, UintClearOfFloatFormatsCopiesLowBits) {
+  struct Case {
+    FORMAT format;
+    uint32_t values[4];
+    uint32_t expect;
+  };
+  const Case cases[] = {
+      {FORMAT_R16G16_FLOAT, {0x13c00u, 0xfffbc00u, 7, 7}, 0x3c00u | (0xbc00u << 16)},
+      // 1.0, 2.03125 and the largest finite float10 (GL's readback flushes denormals and canonicalises NaNs of this format).
+      {FORMAT_R11G11B10_FLOAT, {0xfbc0u, 0xc01u, 0x3dfu, 0}, 0x3c0u | (0x401u << 11) | (0x3dfu << 22)},
+      {FORMAT_R32_FLOAT, {0x7fc00001u, 0, 0, 0}, 0x7fc00001u},  // a NaN payload survives: the bits are copied
+  };
+  for (const Case& c : cases) {
+    if (!TypedUav(c.format)) continue;
+    Ref<Texture2D> tex = MakeTexture2D(device(), 4, 2, c.format, BIND_UNORDERED_ACCESS);
+    ctx().ClearUnorderedAccessViewUint(Uav2D(tex.get(), c.format).get(), c.values);
+    for (uint32_t v : ReadTextureAs<uint32_t>(device(), ctx(), tex.get())) ASSERT_EQ(v, c.expect) << FormatName(c.format);
   }
 }
 

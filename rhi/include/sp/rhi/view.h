@@ -183,6 +183,24 @@ struct ViewRange {
   bool overlaps(const ViewRange& o) const;
 };
 
+// What a view is and what it sees, set by the core when it creates the view, so that hazard
+// tracking and backends switch on them instead of casting or reading the per-kind unions.
+enum class ViewKind : uint8_t { ShaderResource, RenderTarget, DepthStencil, UnorderedAccess };
+enum class ViewShape : uint8_t {
+  TypedBuffer,
+  RawBuffer,         // BUFFEREX_SRV_FLAG_RAW / BUFFER_UAV_FLAG_RAW
+  StructuredBuffer,  // a view of a RESOURCE_MISC_BUFFER_STRUCTURED buffer
+  Texture1D,
+  Texture1DArray,
+  Texture2D,
+  Texture2DArray,
+  Texture2DMS,
+  Texture2DMSArray,
+  Texture3D,
+  TextureCube,
+  TextureCubeArray,
+};
+
 class View : public Object {
  public:
   Resource* GetResource() const { return resource_.get(); }
@@ -194,17 +212,22 @@ class View : public Object {
   const Ref<Resource>& resource() const { return resource_; }
   const ViewRange& Range() const { return range_; }
   FORMAT ViewFormat() const { return format_; }
+  ViewKind Kind() const { return kind_; }
+  ViewShape Shape() const { return shape_; }
+  bool IsBuffer() const { return shape_ <= ViewShape::StructuredBuffer; }
 
  protected:
   friend class Device;
-  View(Device* device, Ref<Resource> resource, const ViewRange& range, FORMAT format)
-      : Object(device), resource_(std::move(resource)), range_(range), format_(format) {}
+  View(Device* device, Ref<Resource> resource, const ViewRange& range, FORMAT format, ViewKind kind, ViewShape shape)
+      : Object(device), resource_(std::move(resource)), range_(range), format_(format), kind_(kind), shape_(shape) {}
   std::string DescribeShape() const override;
 
  private:
   Ref<Resource> resource_;
   ViewRange range_;
   FORMAT format_;
+  ViewKind kind_;
+  ViewShape shape_;
 };
 
 class ShaderResourceView : public View {
@@ -215,8 +238,8 @@ class ShaderResourceView : public View {
 
  protected:
   friend class Device;
-  ShaderResourceView(Device* device, Ref<Resource> resource, const SHADER_RESOURCE_VIEW_DESC& desc, const ViewRange& range)
-      : View(device, std::move(resource), range, desc.Format), desc_(desc) {}
+  ShaderResourceView(Device* device, Ref<Resource> resource, const SHADER_RESOURCE_VIEW_DESC& desc, const ViewRange& range, ViewShape shape)
+      : View(device, std::move(resource), range, desc.Format, ViewKind::ShaderResource, shape), desc_(desc) {}
 
  private:
   SHADER_RESOURCE_VIEW_DESC desc_;
@@ -230,8 +253,8 @@ class RenderTargetView : public View {
 
  protected:
   friend class Device;
-  RenderTargetView(Device* device, Ref<Resource> resource, const RENDER_TARGET_VIEW_DESC& desc, const ViewRange& range)
-      : View(device, std::move(resource), range, desc.Format), desc_(desc) {}
+  RenderTargetView(Device* device, Ref<Resource> resource, const RENDER_TARGET_VIEW_DESC& desc, const ViewRange& range, ViewShape shape)
+      : View(device, std::move(resource), range, desc.Format, ViewKind::RenderTarget, shape), desc_(desc) {}
 
  private:
   RENDER_TARGET_VIEW_DESC desc_;
@@ -245,8 +268,8 @@ class DepthStencilView : public View {
 
  protected:
   friend class Device;
-  DepthStencilView(Device* device, Ref<Resource> resource, const DEPTH_STENCIL_VIEW_DESC& desc, const ViewRange& range)
-      : View(device, std::move(resource), range, desc.Format), desc_(desc) {}
+  DepthStencilView(Device* device, Ref<Resource> resource, const DEPTH_STENCIL_VIEW_DESC& desc, const ViewRange& range, ViewShape shape)
+      : View(device, std::move(resource), range, desc.Format, ViewKind::DepthStencil, shape), desc_(desc) {}
 
  private:
   DEPTH_STENCIL_VIEW_DESC desc_;
@@ -260,8 +283,8 @@ class UnorderedAccessView : public View {
 
  protected:
   friend class Device;
-  UnorderedAccessView(Device* device, Ref<Resource> resource, const UNORDERED_ACCESS_VIEW_DESC& desc, const ViewRange& range)
-      : View(device, std::move(resource), range, desc.Format), desc_(desc) {}
+  UnorderedAccessView(Device* device, Ref<Resource> resource, const UNORDERED_ACCESS_VIEW_DESC& desc, const ViewRange& range, ViewShape shape)
+      : View(device, std::move(resource), range, desc.Format, ViewKind::UnorderedAccess, shape), desc_(desc) {}
 
  private:
   UNORDERED_ACCESS_VIEW_DESC desc_;
