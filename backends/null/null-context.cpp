@@ -14,8 +14,7 @@ class NullContext final : public detail::ContextBackend {
   void Dispatch(const detail::PipelineState&, uint32_t, uint32_t, uint32_t, uint32_t, Buffer*, uint32_t) override {}
   void ClearRenderTargetView(RenderTargetView*, const float[4]) override {}
   void ClearDepthStencilView(DepthStencilView*, uint32_t, float, uint8_t) override {}
-  void ClearUnorderedAccessViewUint(UnorderedAccessView*, const uint32_t[4]) override {}
-  void ClearUnorderedAccessViewFloat(UnorderedAccessView*, const float[4]) override {}
+  void ClearUnorderedAccessView(UnorderedAccessView*, const detail::UavClearValue&) override {}
   // Copies into a staging resource are dropped too: its memory keeps what the CPU wrote, so a
   // readback shows zeros rather than anything resembling a GPU's result.
   void CopyResource(Resource*, Resource*) override {}
@@ -35,10 +34,10 @@ class NullContext final : public detail::ContextBackend {
       out->RowPitch = out->DepthPitch = size;
     } else {
       const TextureShape& s = static_cast<Texture*>(r)->Shape();
-      const uint32_t mip = sub % s.mipLevels;
-      out->RowPitch = s.mipWidth(mip) * GetFormatInfo(s.format).bytesPerElement;
-      out->DepthPitch = out->RowPitch * s.mipHeight(mip);
-      block.resize(size_t(out->DepthPitch) * s.mipDepth(mip));
+      const detail::Subresource at = detail::SubresourceOf(s, sub);
+      out->RowPitch = at.width * GetFormatInfo(s.format).bytesPerElement;
+      out->DepthPitch = out->RowPitch * at.height;
+      block.resize(size_t(out->DepthPitch) * at.depth);
     }
     out->pData = block.data();
     return true;  // no GPU ever holds the resource, so MAP_FLAG_DO_NOT_WAIT never has to wait

@@ -92,7 +92,8 @@ class NullDevice final : public detail::DeviceBackend {
     if (init) {
       const uint32_t bpe = GetFormatInfo(s.format).bytesPerElement;
       for (uint32_t sub = 0; sub < s.subresourceCount(); ++sub) {
-        const uint32_t mip = sub % s.mipLevels, row = s.mipWidth(mip) * bpe, h = s.mipHeight(mip), d = s.mipDepth(mip);
+        const detail::Subresource at = detail::SubresourceOf(s, sub);
+        const uint32_t row = at.width * bpe, h = at.height, d = at.depth;
         std::vector<uint8_t>& block = r->subresources[sub];
         block.resize(size_t(row) * h * d);
         for (uint32_t z = 0; z < d; ++z)
