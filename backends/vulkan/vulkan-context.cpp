@@ -169,15 +169,39 @@ void VulkanContext::BindVertexBuffers(const PipelineState& s) {
   boundVertex_ = std::move(want);
 }
 
+VkPipeline VulkanContext::CachedGraphicsPipeline(const PipelineState& s, uint64_t vsUid, uint64_t psUid, VkPipelineLayout layout, const char* call) {
+  auto uid = [](const auto& ref) { return ref ? ref->UniqueId() : uint64_t(0); };
+  PipelineIdentity id;
+  id.objects = {vsUid, psUid, uid(s.inputLayout), uid(s.rasterizerState), uid(s.depthStencilState), uid(s.blendState)};
+  for (size_t i = 0; i < SIMULTANEOUS_RENDER_TARGET_COUNT; ++i) id.targets[i] = uid(s.renderTargets[i]);
+  id.targets[SIMULTANEOUS_RENDER_TARGET_COUNT] = uid(s.depthStencil);
+  id.layout = layout;
+  id.topology = uint32_t(s.topology);
+  id.sampleMask = s.sampleMask;
+  id.numRenderTargets = s.numRenderTargets;
+  uint64_t h = uint64_t(id.topology) * 31 + id.sampleMask + uint64_t(id.layout);
+  for (uint64_t v : id.objects) h = (h ^ v) * 0x9e3779b97f4a7c15ull;
+  for (uint64_t v : id.targets) h = (h ^ v) * 0x9e3779b97f4a7c15ull;
+  auto& slot = recentPipelines_[(h >> 32) % recentPipelines_.size()];
+  if (slot.second && slot.first == id) return slot.second;
+  slot = {id, GraphicsPipeline(s, layout, call)};
+  return slot.second;
+}
+
 void VulkanContext::Draw(const PipelineState& s, uint32_t dirty, const detail::DrawArgs& args) {
   const char* call = DrawCallName(args.kind, args);
   if (!cur_) BeginBatch();
   VkShaderObj& vs = detail::BackendAs<VkShaderObj>(s.stage(ShaderStage::Vertex).shader);
   VkShaderObj* ps = s.stage(ShaderStage::Pixel).shader ? &detail::BackendAs<VkShaderObj>(s.stage(ShaderStage::Pixel).shader) : nullptr;
-  VkPipelineLayout layout = ps ? dev_->PipelineLayout({vs.setLayout, ps->setLayout}) : dev_->PipelineLayout({vs.setLayout});
+  std::pair<uint64_t, uint64_t> shaders{vs.uid, ps ? ps->uid : 0};
+  VkPipelineLayout layout = currentLayout_;
+  if (!layout || shaders != layoutShaders_) {
+    layout = ps ? dev_->PipelineLayout({vs.setLayout, ps->setLayout}) : dev_->PipelineLayout({vs.setLayout});
+    layoutShaders_ = shaders;
+  }
   const uint32_t pipelineBits = DIRTY_SHADERS | DIRTY_INPUT_LAYOUT | DIRTY_RASTERIZER | DIRTY_DEPTH_STENCIL | DIRTY_BLEND | DIRTY_RENDER_TARGETS;
   if ((dirty & pipelineBits) || !currentPipeline_ || currentLayout_ != layout) {
-    currentPipeline_ = GraphicsPipeline(s, layout, call);
+    currentPipeline_ = CachedGraphicsPipeline(s, vs.uid, shaders.second, layout, call);
     currentLayout_ = layout;
   }
 
@@ -252,11 +276,11 @@ void VulkanContext::Draw(const PipelineState& s, uint32_t dirty, const detail::D
       boundIndex_ = want;
     }
   }
-  ResolveDescriptors(s, ShaderStage::Vertex, vs, scratchItems_, call);
-  BindDescriptors(gfxSets_[0], vs.setLayout, scratchItems_, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0);
+  ResolveDescriptors(s, ShaderStage::Vertex, vs, scratchItems_, scratchOffsets_, call);
+  BindDescriptors(gfxSets_[0], vs.setLayout, scratchItems_, scratchOffsets_, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0);
   if (ps) {
-    ResolveDescriptors(s, ShaderStage::Pixel, *ps, scratchItems_, call);
-    BindDescriptors(gfxSets_[1], ps->setLayout, scratchItems_, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 1);
+    ResolveDescriptors(s, ShaderStage::Pixel, *ps, scratchItems_, scratchOffsets_, call);
+    BindDescriptors(gfxSets_[1], ps->setLayout, scratchItems_, scratchOffsets_, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 1);
   }
 
   switch (args.kind) {
@@ -295,8 +319,8 @@ void VulkanContext::Dispatch(const PipelineState& s, uint32_t dirty, uint32_t x,
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p);
     boundCompute_ = p;
   }
-  ResolveDescriptors(s, ShaderStage::Compute, cs, scratchItems_, call);
-  BindDescriptors(computeSet_, cs.setLayout, scratchItems_, VK_PIPELINE_BIND_POINT_COMPUTE, cs.computeLayout, 0);
+  ResolveDescriptors(s, ShaderStage::Compute, cs, scratchItems_, scratchOffsets_, call);
+  BindDescriptors(computeSet_, cs.setLayout, scratchItems_, scratchOffsets_, VK_PIPELINE_BIND_POINT_COMPUTE, cs.computeLayout, 0);
   if (argsBuffer) {
     const VkBufferObj& ab = BufferOf(argsBuffer);
     vkCmdDispatchIndirect(cmd, ab.range.buffer, ab.range.offset + argsOffset);

@@ -21,6 +21,16 @@ const UnorderedAccessView* UavAt(const PipelineState& s, ShaderStage stage, uint
 
 bool Overlaps(uint32_t a0, uint32_t an, uint32_t b0, uint32_t bn) { return a0 < b0 + bn && b0 < a0 + an; }
 
+uint64_t HashItems(VkDescriptorSetLayout layout, const std::vector<DescriptorItem>& items) {
+  uint64_t h = uint64_t(layout);
+  auto mix = [&](uint64_t v) { h = (h ^ v) * 0x100000001b3ull; };
+  for (const DescriptorItem& it : items) {
+    mix(it.binding), mix(it.type), mix(uint64_t(it.buffer)), mix(it.offset), mix(it.range), mix(uint64_t(it.view)), mix(it.layout);
+    mix(uint64_t(it.sampler)), mix(uint64_t(it.texel));
+  }
+  return h;
+}
+
 }  // namespace
 
 VkImageLayout DsvLayout(const VkViewObj& v) {
@@ -52,16 +62,17 @@ void VulkanContext::CheckSampling(const PipelineState& s, ShaderStage stage, con
     if (!v.texture) continue;
     VkFormatFeatureFlags2 f = dev_->OptimalFeatures(v.format);
     const SAMPLER_DESC& sd = smp->GetDesc();
-    std::string slot = std::string(ShaderStagePrefix(stage)) + " slot t" + std::to_string(p.textureReg);
+    // Built only for an error: per sampled pair and draw it was an allocation on the hot path.
+    auto slot = [&] { return std::string(ShaderStagePrefix(stage)) + " slot t" + std::to_string(p.textureReg); };
     if (p.compared && !(f & VK_FORMAT_FEATURE_2_SAMPLED_IMAGE_DEPTH_COMPARISON_BIT))
       Throw(ErrorId::NOT_SUPPORTED, call, DescribeObject(srv),
-            "the shader compares (SampleCmp/GatherCmp) the texture at " + slot + ", but this device compares only depth textures; create it with a depth "
+            "the shader compares (SampleCmp/GatherCmp) the texture at " + slot() + ", but this device compares only depth textures; create it with a depth "
             "family (e.g. R32_TYPELESS with BIND_DEPTH_STENCIL) and read it through its depth view format");
     bool linear = !FilterIsComparison(sd.Filter) && FilterReduction(sd.Filter) == 0 &&
                   (FilterIsAnisotropic(sd.Filter) || FilterMinLinear(sd.Filter) || FilterMagLinear(sd.Filter));
     if (p.filtered && linear && !(f & VK_FORMAT_FEATURE_2_SAMPLED_IMAGE_FILTER_LINEAR_BIT))
       Throw(ErrorId::NOT_SUPPORTED, call, DescribeObject(srv),
-            "the shader samples the texture at " + slot + " with a linear filter (" + DescribeObject(smp) + "), which this device does not support for " +
+            "the shader samples the texture at " + slot() + " with a linear filter (" + DescribeObject(smp) + "), which this device does not support for " +
                 std::string(FormatName(srv->ViewFormat())) + " views of this texture; use a point filter, Load or Gather");
   }
 }
@@ -103,9 +114,10 @@ void VulkanContext::TrackStageResources(const PipelineState& s, ShaderStage stag
 }
 
 void VulkanContext::ResolveDescriptors(const PipelineState& s, ShaderStage stage, const VkShaderObj& sh, std::vector<DescriptorItem>& out,
-                                       const char* call) {
+                                       std::vector<uint32_t>& dynamicOffsets, const char* call) {
   const StageBindings& b = s.stage(stage);
   out.clear();
+  dynamicOffsets.clear();
   for (const ShaderBinding& sb : sh.bindings) {
     DescriptorItem it;
     it.binding = sb.binding;
@@ -122,6 +134,11 @@ void VulkanContext::ResolveDescriptors(const PipelineState& s, ShaderStage stage
           it.buffer = buf.range.buffer;
           it.offset = buf.range.offset;
           it.range = buf.desc.ByteWidth;
+        }
+        // The set holds the buffer and size only: a renamed cbuffer keeps its set.
+        if (sb.type == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC) {
+          dynamicOffsets.push_back(uint32_t(it.offset));
+          it.offset = 0;
         }
         break;
       }
@@ -170,10 +187,19 @@ void VulkanContext::ResolveDescriptors(const PipelineState& s, ShaderStage stage
 }
 
 bool VulkanContext::BindDescriptors(StageDescriptors& sd, VkDescriptorSetLayout layout, std::vector<DescriptorItem>& items,
-                                    VkPipelineBindPoint point, VkPipelineLayout pipeLayout, uint32_t setIndex) {
+                                    std::vector<uint32_t>& dynamicOffsets, VkPipelineBindPoint point, VkPipelineLayout pipeLayout, uint32_t setIndex) {
   if (items.empty()) return false;
   bool rewrite = !(sd.set && sd.layout == layout && sd.items == items);
+  CachedSet* cached = nullptr;
   if (rewrite) {
+    if (setCache_.size() > 4096) setCache_.clear();
+    cached = &setCache_[HashItems(layout, items)];
+  }
+  if (rewrite && cached->set && cached->layout == layout && cached->items == items) {
+    sd.set = cached->set;
+    sd.layout = layout;
+    sd.items.swap(items);
+  } else if (rewrite) {
     VkDescriptorSet set = AllocateSet(layout);
     // Reused between rewrites: three allocations per set and draw showed in the per-draw cost.
     static thread_local std::vector<VkWriteDescriptorSet> writes;
@@ -211,13 +237,15 @@ bool VulkanContext::BindDescriptors(StageDescriptors& sd, VkDescriptorSetLayout 
       }
     }
     vkUpdateDescriptorSets(dev_->device, uint32_t(writes.size()), writes.data(), 0, nullptr);
+    *cached = {layout, items, set};
     sd.set = set;
     sd.layout = layout;
     sd.items.swap(items);
   }
-  if (rewrite || sd.boundWith != pipeLayout) {
-    vkCmdBindDescriptorSets(cur_->cmd, point, pipeLayout, setIndex, 1, &sd.set, 0, nullptr);
+  if (rewrite || sd.boundWith != pipeLayout || sd.dynamicOffsets != dynamicOffsets) {
+    vkCmdBindDescriptorSets(cur_->cmd, point, pipeLayout, setIndex, 1, &sd.set, uint32_t(dynamicOffsets.size()), dynamicOffsets.data());
     sd.boundWith = pipeLayout;
+    sd.dynamicOffsets.swap(dynamicOffsets);
   }
   return rewrite;
 }

@@ -448,6 +448,15 @@ struct DescriptorItem {
   bool operator==(const DescriptorItem&) const = default;
 };
 
+// What selects a graphics pipeline, as uids of the bound objects (see recentPipelines_).
+struct PipelineIdentity {
+  std::array<uint64_t, 6> objects{};  // VS, PS, input layout, rasterizer, depth-stencil, blend
+  std::array<uint64_t, SIMULTANEOUS_RENDER_TARGET_COUNT + 1> targets{};
+  VkPipelineLayout layout = VK_NULL_HANDLE;
+  uint32_t topology = 0, sampleMask = 0, numRenderTargets = 0;
+  bool operator==(const PipelineIdentity&) const = default;
+};
+
 class VulkanContext final : public detail::ContextBackend {
  public:
   explicit VulkanContext(VulkanDevice* dev);
@@ -518,6 +527,7 @@ class VulkanContext final : public detail::ContextBackend {
     std::vector<DescriptorItem> items;
     VkDescriptorSet set = VK_NULL_HANDLE;
     VkPipelineLayout boundWith = VK_NULL_HANDLE;
+    std::vector<uint32_t> dynamicOffsets;  // of the dynamic cbuffers, in binding order, as last bound
   };
   struct RenderPassKey {
     std::array<uint64_t, SIMULTANEOUS_RENDER_TARGET_COUNT + 1> views{};  // view uids (0 = none)
@@ -530,15 +540,16 @@ class VulkanContext final : public detail::ContextBackend {
   void RecycleBatch(std::unique_ptr<Batch> b);
   VkDescriptorSet AllocateSet(VkDescriptorSetLayout layout);
   // vulkan-descriptors.cpp
-  void ResolveDescriptors(const PipelineState& s, ShaderStage stage, const VkShaderObj& sh, std::vector<DescriptorItem>& out,
+  void ResolveDescriptors(const PipelineState& s, ShaderStage stage, const VkShaderObj& sh, std::vector<DescriptorItem>& out, std::vector<uint32_t>& dynamicOffsets,
                           const char* call);
   void TrackStageResources(const PipelineState& s, ShaderStage stage, const VkShaderObj& sh);
   void CheckSampling(const PipelineState& s, ShaderStage stage, const VkShaderObj& sh, const char* call);
-  bool BindDescriptors(StageDescriptors& sd, VkDescriptorSetLayout layout, std::vector<DescriptorItem>& items,
+  bool BindDescriptors(StageDescriptors& sd, VkDescriptorSetLayout layout, std::vector<DescriptorItem>& items, std::vector<uint32_t>& dynamicOffsets,
                        VkPipelineBindPoint point, VkPipelineLayout pipeLayout, uint32_t setIndex);
   VkImageLayout SrvLayout(const PipelineState& s, const VkViewObj& v) const;
   // vulkan-pipeline.cpp
   VkPipeline GraphicsPipeline(const PipelineState& s, VkPipelineLayout layout, const char* call);
+  VkPipeline CachedGraphicsPipeline(const PipelineState& s, uint64_t vsUid, uint64_t psUid, VkPipelineLayout layout, const char* call);
   VkPipeline ComputePipeline(const VkShaderObj& cs, const char* call);
   // vulkan-context.cpp
   void BeginRendering(const PipelineState& s);
@@ -595,7 +606,20 @@ class VulkanContext final : public detail::ContextBackend {
   std::tuple<VkBuffer, VkDeviceSize, VkIndexType> boundIndex_{};
   VkPipeline currentPipeline_ = VK_NULL_HANDLE;
   VkPipelineLayout currentLayout_ = VK_NULL_HANDLE;
+  // Pipelines recently resolved, by the uids of what selects them (objects are immutable and uids
+  // never reused): a state change back to a seen combination skips building and hashing the key.
+  std::array<std::pair<PipelineIdentity, VkPipeline>, 64> recentPipelines_{};
+  std::pair<uint64_t, uint64_t> layoutShaders_{};  // VS, PS uids currentLayout_ was looked up for
   std::vector<DescriptorItem> scratchItems_;
+  // Sets written in this command buffer, by content: going back to a combination seen in the
+  // batch (a material's textures, say) binds its set again instead of allocating and writing one.
+  struct CachedSet {
+    VkDescriptorSetLayout layout = VK_NULL_HANDLE;
+    std::vector<DescriptorItem> items;
+    VkDescriptorSet set = VK_NULL_HANDLE;
+  };
+  std::unordered_map<uint64_t, CachedSet> setCache_;
+  std::vector<uint32_t> scratchOffsets_;
   std::array<std::array<RepackedConstants, COMMONSHADER_CONSTANT_BUFFER_API_SLOT_COUNT>, SHADER_STAGE_COUNT> repacked_{};
   std::vector<VkQueryObj*> activeQueries_;
   std::shared_ptr<QuerySegment> segment_;  // the occlusion query running now

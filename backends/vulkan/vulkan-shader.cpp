@@ -65,8 +65,12 @@ std::unique_ptr<VkShaderObj> CreateShaderObj(VulkanDevice* dev, Shader& shader) 
     Throw(ErrorId::INVALID_ARGUMENT, call, object, "the bytecode carries no SPIR-V products for the Vulkan backend; compile it with this version of the toolchain");
   s->entry = products.entryPoint;
   const ShaderReflection& r = bc.reflection;
+  // Dynamic, so that a WRITE_DISCARD rename only changes the offset given to vkCmdBindDescriptorSets
+  // instead of costing a new set per draw; the limit counts the VS and PS sets of one layout together.
+  VkDescriptorType cbType = r.cbuffers.size() <= dev->props.limits.maxDescriptorSetUniformBuffersDynamic / 2 ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC
+                                                                                                            : VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
   for (const CBufferInfo& cb : r.cbuffers)
-    s->bindings.push_back({cb.vkBinding, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, RegisterClass::ConstantBuffer, cb.registerIndex, ShaderResourceType::ConstantBuffer});
+    s->bindings.push_back({cb.vkBinding, cbType, RegisterClass::ConstantBuffer, cb.registerIndex, ShaderResourceType::ConstantBuffer});
   for (const ShaderResourceBinding& b : r.resources)
     s->bindings.push_back({b.vkBinding, DescriptorTypeOf(b.type), b.registerClass, b.registerIndex, b.type});
   std::sort(s->bindings.begin(), s->bindings.end(), [](const ShaderBinding& a, const ShaderBinding& b) { return a.binding < b.binding; });

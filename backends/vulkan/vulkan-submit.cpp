@@ -87,6 +87,7 @@ void VulkanContext::ResetCommandBufferState() {
   boundCompute_ = VK_NULL_HANDLE;
   for (auto& s : gfxSets_) s = {};
   computeSet_ = {};
+  setCache_.clear();  // its sets come from the previous batch's pools
   dynamicStateValid_ = false;
   boundVertex_.clear();
   boundIndex_ = {};
@@ -176,7 +177,7 @@ VkDescriptorSet VulkanContext::AllocateSet(VkDescriptorSetLayout layout) {
         {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 2048},       {VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE, 2048},
         {VK_DESCRIPTOR_TYPE_SAMPLER, 1024},              {VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, 512},
         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1024},       {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 512},
-        {VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER, 512},
+        {VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER, 512},  {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, 2048},
     };
     VkDescriptorPoolCreateInfo pci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
     pci.maxSets = 512;
