@@ -452,10 +452,10 @@ namespace detail {
 
 const TargetProducts& TargetsOf(const ShaderBytecode& b) {
   static const TargetProducts kNone;
-  return b.glLayout ? *b.glLayout : kNone;
+  return b.targets ? *b.targets : kNone;
 }
 
-void SetTargets(ShaderBytecode& b, TargetProducts products) { b.glLayout = std::make_shared<const TargetProducts>(std::move(products)); }
+void SetTargets(ShaderBytecode& b, TargetProducts products) { b.targets = std::make_shared<const TargetProducts>(std::move(products)); }
 
 const std::vector<uint32_t>& SpirvFor(const ShaderBytecode& b, SpirvVariant v) {
   const SpirvProducts& p = TargetsOf(b).spirv;

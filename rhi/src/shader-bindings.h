@@ -2,7 +2,7 @@
 // shader (private to the library: the toolchain's target modules, rhi/src/hlsl/target-*.cpp,
 // write these products at compile time, the backends only create modules and programs from them,
 // the core reads them to learn how a shader uses a texture). Applications see only
-// ShaderBytecode's opaque `glLayout` handle and the reflection.
+// ShaderBytecode's opaque `targets` handle and the reflection.
 #pragma once
 #include <cstdint>
 #include <string>
@@ -103,14 +103,11 @@ struct GlslProducts {
   std::string dualSourceGlsl;  // pixel shaders writing SV_Target1: SV_Target1 at location 0 index 1
 };
 
-// Every target's products. The public header still calls it GlProgramLayout and the field
-// ShaderBytecode::glLayout, from when it held the GL binding table only; left so the installed
-// interface (and everything built against it) does not change.
-struct GlProgramLayout {
+// Every target's products (ShaderBytecode::targets).
+struct TargetProducts {
   SpirvProducts spirv;
   GlslProducts gl;
 };
-using TargetProducts = GlProgramLayout;
 
 const TargetProducts& TargetsOf(const ShaderBytecode& bytecode);  // empty products when none
 void SetTargets(ShaderBytecode& bytecode, TargetProducts products);

@@ -16,7 +16,7 @@
 namespace sp {
 
 namespace detail {
-struct GlProgramLayout;
+struct TargetProducts;
 }  // namespace detail
 
 enum class ShaderStage : uint8_t { Vertex = 0, Pixel = 1, Geometry = 2, Compute = 3 };
@@ -111,10 +111,10 @@ struct ShaderBytecode {
   std::string sourceName;        // "shaders-hlsl/basic/lit.hlsl:PSMain", for messages
   std::vector<uint32_t> spirv;   // Vulkan (SPIR-V 1.3, legalised, validated; VS flips y)
   std::string glsl;              // OpenGL (GLSL 4.50 core)
-  // Where the GL backend binds each register of the GLSL (texture units per texture-sampler
-  // pair, cbuffer repacking): written by the toolchain, opaque to applications (Serialize and
-  // ReflectionJson include it).
-  std::shared_ptr<const detail::GlProgramLayout> glLayout;
+  // What each backend needs besides the code (GL binding table, Vulkan module variants, cbuffer
+  // repacking, dual-source variants): written once by the toolchain's per-target modules,
+  // opaque to applications (Serialize and ReflectionJson include it).
+  std::shared_ptr<const detail::TargetProducts> targets;
   ShaderReflection reflection;
 
   bool empty() const { return spirv.empty(); }
