@@ -237,13 +237,6 @@ GLuint DualSourceProgram(GLDevice& dev, GLShader& shader);
 // ---------------------------------------------------------------------------------------------
 // Helpers shared by the transfer code
 
-// The GL coordinates of one subresource: level, and the z (or y for 1D arrays) of its slice.
-struct GLSubresource {
-  GLint level = 0;
-  GLint slice = 0;  // array layer (0 for non-arrays); 3D textures use the box's z instead
-};
-GLSubresource SubresourceOf(const TextureShape& shape, uint32_t subresource);
-
 // A D3D region (x, y, z or array layer, extent) in the coordinates GL uses for a target: 1D
 // arrays keep layers in y, 2D arrays and cubes in z.
 struct GLRegion {
@@ -258,7 +251,7 @@ void D24S8ToGL(uint32_t* texels, size_t count);
 
 // Uploads D3D-laid-out rows (rowPitch/depthPitch) into a region of a texture, from client memory
 // or, when `pbo` is non-zero, from that buffer at byte offset `data`.
-void UploadRegion(GLTexture& t, uint32_t subresource, uint32_t x, uint32_t y, uint32_t z, uint32_t w, uint32_t h, uint32_t d,
+void UploadRegion(GLTexture& t, const detail::Subresource& sub, uint32_t x, uint32_t y, uint32_t z, uint32_t w, uint32_t h, uint32_t d,
                   const void* data, uint32_t rowPitch, uint32_t depthPitch, GLuint pbo = 0);
 
 inline GLTexture& GL(const Texture* t) { return detail::BackendAs<GLTexture>(t); }

@@ -10,7 +10,7 @@
 
 namespace sp::gl {
 
-bool GLContext::Map(Resource* r, uint32_t sub, MAP type, uint32_t flags, MAPPED_SUBRESOURCE* out) {
+bool GLContext::Map(Resource* r, const detail::Subresource& sub, MAP type, uint32_t flags, MAPPED_SUBRESOURCE* out) {
   dev_.MakeCurrent();
   const bool doNotWait = (flags & MAP_FLAG_DO_NOT_WAIT) != 0;
   if (r->GetType() == RESOURCE_DIMENSION_BUFFER) {
@@ -39,10 +39,10 @@ bool GLContext::Map(Resource* r, uint32_t sub, MAP type, uint32_t flags, MAPPED_
   GLTexture& t = GL(static_cast<Texture*>(r));
   if (t.isStaging()) {
     if (!t.staging.Wait(doNotWait)) return false;
-    const SubresourceLayout& l = t.subresources[sub];
-    if (t.glPacked[sub]) {
+    const SubresourceLayout& l = t.subresources[sub.index];
+    if (t.glPacked[sub.index]) {
       D24S8ToD3D(reinterpret_cast<uint32_t*>(t.staging.ptr + l.offset), size_t(l.depthPitch) * l.depth / 4);
-      t.glPacked[sub] = 0;
+      t.glPacked[sub.index] = 0;
     }
     out->pData = t.staging.ptr + l.offset;
     out->RowPitch = l.rowPitch;
@@ -50,18 +50,17 @@ bool GLContext::Map(Resource* r, uint32_t sub, MAP type, uint32_t flags, MAPPED_
     return true;
   }
   // USAGE_DYNAMIC with WRITE_DISCARD (the only way the core lets a dynamic texture be mapped).
-  const uint32_t mip = detail::SubresourceOf(t.shape, sub).mip;
-  const uint32_t rowPitch = t.shape.mipWidth(mip) * GetFormatInfo(t.shape.format).bytesPerElement;
-  const uint32_t height = t.shape.dimension == RESOURCE_DIMENSION_TEXTURE1D ? 1 : t.shape.mipHeight(mip);
-  std::vector<uint8_t>& data = t.dynamicData[sub];
-  data.resize(size_t(rowPitch) * height * t.shape.mipDepth(mip));
+  const uint32_t rowPitch = sub.width * GetFormatInfo(t.shape.format).bytesPerElement;
+  const uint32_t height = t.shape.dimension == RESOURCE_DIMENSION_TEXTURE1D ? 1 : sub.height;
+  std::vector<uint8_t>& data = t.dynamicData[sub.index];
+  data.resize(size_t(rowPitch) * height * sub.depth);
   out->pData = data.data();
   out->RowPitch = rowPitch;
   out->DepthPitch = rowPitch * height;
   return true;
 }
 
-void GLContext::Unmap(Resource* r, uint32_t sub) {
+void GLContext::Unmap(Resource* r, const detail::Subresource& sub) {
   dev_.MakeCurrent();
   if (r->GetType() == RESOURCE_DIMENSION_BUFFER) {
     GLBuffer& b = GL(static_cast<Buffer*>(r));
@@ -80,11 +79,9 @@ void GLContext::Unmap(Resource* r, uint32_t sub) {
   }
   GLTexture& t = GL(static_cast<Texture*>(r));
   if (t.isStaging()) return;  // coherent: the GPU sees CPU writes
-  const uint32_t mip = detail::SubresourceOf(t.shape, sub).mip;
-  const uint32_t rowPitch = t.shape.mipWidth(mip) * GetFormatInfo(t.shape.format).bytesPerElement;
-  const uint32_t height = t.shape.dimension == RESOURCE_DIMENSION_TEXTURE1D ? 1 : t.shape.mipHeight(mip);
-  UploadRegion(t, sub, 0, 0, 0, t.shape.mipWidth(mip), t.shape.mipHeight(mip), t.shape.mipDepth(mip), t.dynamicData[sub].data(), rowPitch,
-               rowPitch * height);
+  const uint32_t rowPitch = sub.width * GetFormatInfo(t.shape.format).bytesPerElement;
+  const uint32_t height = t.shape.dimension == RESOURCE_DIMENSION_TEXTURE1D ? 1 : sub.height;
+  UploadRegion(t, sub, 0, 0, 0, sub.width, sub.height, sub.depth, t.dynamicData[sub.index].data(), rowPitch, rowPitch * height);
 }
 
 }  // namespace sp::gl

@@ -38,11 +38,6 @@ bool GLTexture::arrayed() const {
   return target == GL_TEXTURE_1D_ARRAY || target == GL_TEXTURE_2D_ARRAY || target == GL_TEXTURE_2D_MULTISAMPLE_ARRAY;
 }
 
-GLSubresource SubresourceOf(const TextureShape& s, uint32_t sub) {
-  const detail::Subresource r = detail::SubresourceOf(s, sub);
-  return {GLint(r.mip), GLint(r.slice)};
-}
-
 void D24S8ToD3D(uint32_t* t, size_t n) {
   for (size_t i = 0; i < n; ++i) t[i] = (t[i] >> 8) | (t[i] << 24);
 }
@@ -51,7 +46,7 @@ void D24S8ToGL(uint32_t* t, size_t n) {
   for (size_t i = 0; i < n; ++i) t[i] = (t[i] << 8) | (t[i] >> 24);
 }
 
-void UploadRegion(GLTexture& t, uint32_t sub, uint32_t x, uint32_t y, uint32_t z, uint32_t w, uint32_t h, uint32_t d, const void* data,
+void UploadRegion(GLTexture& t, const detail::Subresource& sub, uint32_t x, uint32_t y, uint32_t z, uint32_t w, uint32_t h, uint32_t d, const void* data,
                   uint32_t rowPitch, uint32_t depthPitch, GLuint pbo) {
   const uint32_t bpe = BytesPerTexel(t.shape);
   const uint32_t tightRow = w * bpe;
@@ -76,14 +71,13 @@ void UploadRegion(GLTexture& t, uint32_t sub, uint32_t x, uint32_t y, uint32_t z
   glBindBuffer(GL_PIXEL_UNPACK_BUFFER, pbo);
   glPixelStorei(GL_UNPACK_ROW_LENGTH, GLint(rowPitch / bpe));
   glPixelStorei(GL_UNPACK_IMAGE_HEIGHT, GLint(depthPitch / rowPitch));
-  const GLSubresource sr = SubresourceOf(t.shape, sub);
-  const GLRegion r = RegionOf(t.target, x, y, t.shape.dimension == RESOURCE_DIMENSION_TEXTURE3D ? z : uint32_t(sr.slice), w, h,
+  const GLRegion r = RegionOf(t.target, x, y, t.shape.dimension == RESOURCE_DIMENSION_TEXTURE3D ? z : sub.slice, w, h,
                               t.shape.dimension == RESOURCE_DIMENSION_TEXTURE3D ? d : 1);
   switch (t.target) {
-    case GL_TEXTURE_1D: glTextureSubImage1D(t.name, sr.level, r.x, r.w, f.extFormat, f.extType, data); break;
+    case GL_TEXTURE_1D: glTextureSubImage1D(t.name, GLint(sub.mip), r.x, r.w, f.extFormat, f.extType, data); break;
     case GL_TEXTURE_1D_ARRAY:
-    case GL_TEXTURE_2D: glTextureSubImage2D(t.name, sr.level, r.x, r.y, r.w, r.h, f.extFormat, f.extType, data); break;
-    default: glTextureSubImage3D(t.name, sr.level, r.x, r.y, r.z, r.w, r.h, r.d, f.extFormat, f.extType, data); break;
+    case GL_TEXTURE_2D: glTextureSubImage2D(t.name, GLint(sub.mip), r.x, r.y, r.w, r.h, f.extFormat, f.extType, data); break;
+    default: glTextureSubImage3D(t.name, GLint(sub.mip), r.x, r.y, r.z, r.w, r.h, r.d, f.extFormat, f.extType, data); break;
   }
   glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
   glPixelStorei(GL_UNPACK_IMAGE_HEIGHT, 0);
@@ -159,7 +153,7 @@ std::unique_ptr<detail::BackendObject> CreateGLTexture(GLDevice& dev, Texture& t
   if (init) {
     for (uint32_t i = 0; i < s.subresourceCount(); ++i) {
       const detail::Subresource r = detail::SubresourceOf(s, i);
-      UploadRegion(*t, i, 0, 0, 0, r.width, r.height, r.depth, init[i].pSysMem, init[i].SysMemPitch,
+      UploadRegion(*t, r, 0, 0, 0, r.width, r.height, r.depth, init[i].pSysMem, init[i].SysMemPitch,
                    init[i].SysMemSlicePitch);
     }
   } else {

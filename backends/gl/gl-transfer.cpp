@@ -41,8 +41,8 @@ void CopyBufferRegion(GLBuffer& dst, uint32_t dstOffset, GLBuffer& src, uint32_t
 // A texture of a depth family stored as depth and its twin stored as colour (created without
 // BIND_DEPTH_STENCIL) are copied bit for bit in D3D; glCopyImageSubData refuses depth-colour
 // pairs, so the texels go through a buffer in the byte layout both share.
-void CopyDepthColour(GLTexture& d, uint32_t dstSub, uint32_t x, uint32_t y, uint32_t z, GLTexture& s, uint32_t srcSub, const BOX& b) {
-  const GLSubresource ss = SubresourceOf(s.shape, srcSub);
+void CopyDepthColour(GLTexture& d, const detail::Subresource& dstSub, uint32_t x, uint32_t y, uint32_t z, GLTexture& s, const detail::Subresource& srcSub, const BOX& b) {
+  const detail::Subresource& ss = srcSub;
   const uint32_t w = b.right - b.left, h = b.bottom - b.top, depth = b.back - b.front, bpe = TexelBytes(s);
   const GLsizei size = GLsizei(w * h * depth * bpe);
   const GLRegion r = RegionOf(s.target, b.left, b.top, Is3D(s) ? b.front : uint32_t(ss.slice), w, h, Is3D(s) ? depth : 1);
@@ -50,53 +50,53 @@ void CopyDepthColour(GLTexture& d, uint32_t dstSub, uint32_t x, uint32_t y, uint
   glCreateBuffers(1, &temp);
   glNamedBufferStorage(temp, size, nullptr, 0);
   glBindBuffer(GL_PIXEL_PACK_BUFFER, temp);
-  glGetTextureSubImage(s.name, ss.level, r.x, r.y, r.z, r.w, r.h, r.d, s.storage->extFormat, s.storage->extType, size, nullptr);
+  glGetTextureSubImage(s.name, GLint(ss.mip), r.x, r.y, r.z, r.w, r.h, r.d, s.storage->extFormat, s.storage->extType, size, nullptr);
   glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
   UploadRegion(d, dstSub, x, y, z, w, h, depth, nullptr, w * bpe, w * bpe * h, temp);
   d.dev->DeleteBuffer(temp);
 }
 
-void CopyGpuTextures(GLTexture& d, uint32_t dstSub, uint32_t x, uint32_t y, uint32_t z, GLTexture& s, uint32_t srcSub, const BOX& b) {
+void CopyGpuTextures(GLTexture& d, const detail::Subresource& dstSub, uint32_t x, uint32_t y, uint32_t z, GLTexture& s, const detail::Subresource& srcSub, const BOX& b) {
   if (s.storage->depth != d.storage->depth) {
     CopyDepthColour(d, dstSub, x, y, z, s, srcSub, b);
     return;
   }
-  const GLSubresource ss = SubresourceOf(s.shape, srcSub), ds = SubresourceOf(d.shape, dstSub);
+  const detail::Subresource &ss = srcSub, &ds = dstSub;
   const uint32_t w = b.right - b.left, h = b.bottom - b.top, depth = b.back - b.front;
   GLRegion sr = RegionOf(s.target, b.left, b.top, Is3D(s) ? b.front : uint32_t(ss.slice), w, h, Is3D(s) ? depth : 1);
   GLRegion dr = RegionOf(d.target, x, y, Is3D(d) ? z : uint32_t(ds.slice), w, h, Is3D(d) ? depth : 1);
   // Unlike the other image calls, glCopyImageSubData addresses 1D array layers with z.
   if (s.target == GL_TEXTURE_1D_ARRAY) sr = {sr.x, 0, sr.y, sr.w, 1, 1}, dr = {dr.x, 0, dr.y, dr.w, 1, 1};
-  glCopyImageSubData(s.name, s.target, ss.level, sr.x, sr.y, sr.z, d.name, d.target, ds.level, dr.x, dr.y, dr.z, sr.w, sr.h, sr.d);
+  glCopyImageSubData(s.name, s.target, GLint(ss.mip), sr.x, sr.y, sr.z, d.name, d.target, GLint(ds.mip), dr.x, dr.y, dr.z, sr.w, sr.h, sr.d);
 }
 
-void ReadbackToStaging(GLTexture& d, uint32_t dstSub, uint32_t x, uint32_t y, uint32_t z, GLTexture& s, uint32_t srcSub, const BOX& b) {
-  const SubresourceLayout& l = d.subresources[dstSub];
+void ReadbackToStaging(GLTexture& d, const detail::Subresource& dstSub, uint32_t x, uint32_t y, uint32_t z, GLTexture& s, const detail::Subresource& srcSub, const BOX& b) {
+  const SubresourceLayout& l = d.subresources[dstSub.index];
   const uint32_t bpe = TexelBytes(d);
   const uint64_t offset = l.offset + uint64_t(z) * l.depthPitch + uint64_t(y) * l.rowPitch + uint64_t(x) * bpe;
   const uint64_t total = d.subresources.back().offset + uint64_t(d.subresources.back().depthPitch) * d.subresources.back().depth;
-  const GLSubresource ss = SubresourceOf(s.shape, srcSub);
+  const detail::Subresource& ss = srcSub;
   const uint32_t w = b.right - b.left, h = b.bottom - b.top, depth = b.back - b.front;
   const GLRegion r = RegionOf(s.target, b.left, b.top, Is3D(s) ? b.front : uint32_t(ss.slice), w, h, Is3D(s) ? depth : 1);
   glPixelStorei(GL_PACK_ROW_LENGTH, GLint(l.rowPitch / bpe));
   glPixelStorei(GL_PACK_IMAGE_HEIGHT, GLint(l.height));
   glBindBuffer(GL_PIXEL_PACK_BUFFER, d.staging.buffer);
-  glGetTextureSubImage(s.name, ss.level, r.x, r.y, r.z, r.w, r.h, r.d, s.storage->extFormat, s.storage->extType, GLsizei(total - offset),
+  glGetTextureSubImage(s.name, GLint(ss.mip), r.x, r.y, r.z, r.w, r.h, r.d, s.storage->extFormat, s.storage->extType, GLsizei(total - offset),
                        reinterpret_cast<void*>(uintptr_t(offset)));
   glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
   glPixelStorei(GL_PACK_ROW_LENGTH, 0);
   glPixelStorei(GL_PACK_IMAGE_HEIGHT, 0);
-  if (s.storage->extType == GL_UNSIGNED_INT_24_8) d.glPacked[dstSub] = 1;
+  if (s.storage->extType == GL_UNSIGNED_INT_24_8) d.glPacked[dstSub.index] = 1;
   d.staging.MarkGpuUse();
 }
 
-void UploadFromStaging(GLTexture& d, uint32_t dstSub, uint32_t x, uint32_t y, uint32_t z, GLTexture& s, uint32_t srcSub, const BOX& b) {
-  const SubresourceLayout& l = s.subresources[srcSub];
+void UploadFromStaging(GLTexture& d, const detail::Subresource& dstSub, uint32_t x, uint32_t y, uint32_t z, GLTexture& s, const detail::Subresource& srcSub, const BOX& b) {
+  const SubresourceLayout& l = s.subresources[srcSub.index];
   const uint64_t offset = l.offset + uint64_t(b.front) * l.depthPitch + uint64_t(b.top) * l.rowPitch + uint64_t(b.left) * TexelBytes(s);
   const uint32_t w = b.right - b.left, h = b.bottom - b.top, depth = b.back - b.front;
   if (d.storage->extType == GL_UNSIGNED_INT_24_8) {
     // Repacked for GL on the CPU: read the staging memory once the GPU is done with it.
-    EnsureD3DLayout(s, srcSub);
+    EnsureD3DLayout(s, srcSub.index);
     s.staging.Wait(false);
     UploadRegion(d, dstSub, x, y, z, w, h, depth, s.staging.ptr + offset, l.rowPitch, l.depthPitch);
     return;
@@ -105,9 +105,9 @@ void UploadFromStaging(GLTexture& d, uint32_t dstSub, uint32_t x, uint32_t y, ui
   s.staging.MarkGpuUse();
 }
 
-void CopyStagingToStaging(GLTexture& d, uint32_t dstSub, uint32_t x, uint32_t y, uint32_t z, GLTexture& s, uint32_t srcSub, const BOX& b) {
-  EnsureD3DLayout(s, srcSub);
-  const SubresourceLayout &sl = s.subresources[srcSub], &dl = d.subresources[dstSub];
+void CopyStagingToStaging(GLTexture& d, const detail::Subresource& dstSub, uint32_t x, uint32_t y, uint32_t z, GLTexture& s, const detail::Subresource& srcSub, const BOX& b) {
+  EnsureD3DLayout(s, srcSub.index);
+  const SubresourceLayout &sl = s.subresources[srcSub.index], &dl = d.subresources[dstSub.index];
   const uint32_t bpe = TexelBytes(s);
   const uint32_t rowBytes = (b.right - b.left) * bpe;
   for (uint32_t k = 0; k < b.back - b.front; ++k)
@@ -116,12 +116,12 @@ void CopyStagingToStaging(GLTexture& d, uint32_t dstSub, uint32_t x, uint32_t y,
       uint64_t to = dl.offset + uint64_t(z + k) * dl.depthPitch + uint64_t(y + j) * dl.rowPitch + uint64_t(x) * bpe;
       glCopyNamedBufferSubData(s.staging.buffer, d.staging.buffer, GLintptr(from), GLintptr(to), rowBytes);
     }
-  d.glPacked[dstSub] = 0;
+  d.glPacked[dstSub.index] = 0;
   s.staging.MarkGpuUse();
   d.staging.MarkGpuUse();
 }
 
-void CopyTextureRegion(Texture* dst, uint32_t dstSub, uint32_t x, uint32_t y, uint32_t z, Texture* src, uint32_t srcSub, const BOX& b) {
+void CopyTextureRegion(Texture* dst, const detail::Subresource& dstSub, uint32_t x, uint32_t y, uint32_t z, Texture* src, const detail::Subresource& srcSub, const BOX& b) {
   GLTexture &d = GL(dst), &s = GL(src);
   if (s.storage->depth != d.storage->depth && s.shape.sampleCount > 1)
     ThrowError(ErrorId::NOT_SUPPORTED, "CopyResource", src->Describe(),
@@ -160,11 +160,12 @@ void GLContext::CopyResource(Resource* dst, Resource* src) {
   Texture *d = static_cast<Texture*>(dst), *s = static_cast<Texture*>(src);
   const TextureShape& shape = s->Shape();
   for (uint32_t sub = 0; sub < shape.subresourceCount(); ++sub) {
-    CopyTextureRegion(d, sub, 0, 0, 0, s, sub, detail::SubresourceOf(shape, sub).box());
+    const detail::Subresource at = detail::SubresourceOf(shape, sub);
+    CopyTextureRegion(d, at, 0, 0, 0, s, at, at.box());
   }
 }
 
-void GLContext::CopySubresourceRegion(Resource* dst, uint32_t dstSub, uint32_t x, uint32_t y, uint32_t z, Resource* src, uint32_t srcSub,
+void GLContext::CopySubresourceRegion(Resource* dst, const detail::Subresource& dstSub, uint32_t x, uint32_t y, uint32_t z, Resource* src, const detail::Subresource& srcSub,
                                       const BOX& b) {
   dev_.MakeCurrent();
   if (IsBuffer(dst)) {
@@ -174,7 +175,7 @@ void GLContext::CopySubresourceRegion(Resource* dst, uint32_t dstSub, uint32_t x
   CopyTextureRegion(static_cast<Texture*>(dst), dstSub, x, y, z, static_cast<Texture*>(src), srcSub, b);
 }
 
-void GLContext::UpdateSubresource(Resource* dst, uint32_t sub, const BOX& b, const void* data, uint32_t rowPitch, uint32_t depthPitch) {
+void GLContext::UpdateSubresource(Resource* dst, const detail::Subresource& sub, const BOX& b, const void* data, uint32_t rowPitch, uint32_t depthPitch) {
   dev_.MakeCurrent();
   if (IsBuffer(dst)) {
     GLBuffer& buf = GL(static_cast<Buffer*>(dst));
@@ -201,7 +202,7 @@ void GLContext::GenerateMips(ShaderResourceView* srv) {
   glGenerateTextureMipmap(GL(srv).texture);
 }
 
-void GLContext::ResolveSubresource(Resource* dst, uint32_t dstSub, Resource* src, uint32_t srcSub, FORMAT format) {
+void GLContext::ResolveSubresource(Resource* dst, const detail::Subresource& dstSub, Resource* src, const detail::Subresource& srcSub, FORMAT format) {
   dev_.MakeCurrent();
   if (!(dev_.CheckFormatSupport(format) & FORMAT_SUPPORT_MULTISAMPLE_RESOLVE))
     ThrowError(ErrorId::FORMAT_UNSUPPORTED, "ResolveSubresource", src->Describe(),
@@ -209,8 +210,7 @@ void GLContext::ResolveSubresource(Resource* dst, uint32_t dstSub, Resource* src
   GLTexture &d = GL(static_cast<Texture*>(dst)), &s = GL(static_cast<Texture*>(src));
   const GLenum internal = FormatOf(format).internal;
   // Both sides are attached in the resolve format, so the blit neither converts nor refuses.
-  auto attachment = [&](GLTexture& t, uint32_t sub, GLuint& temp) {
-    const GLSubresource sr = SubresourceOf(t.shape, sub);
+  auto attachment = [&](GLTexture& t, const detail::Subresource& sr, GLuint& temp) {
     GLuint texture = t.name;
     if (t.storage->internal != internal) {
       glGenTextures(1, &temp);
@@ -218,7 +218,7 @@ void GLContext::ResolveSubresource(Resource* dst, uint32_t dstSub, Resource* src
       glTextureView(temp, t.target, t.name, internal, 0, ms ? 1 : t.shape.mipLevels, 0, t.arrayed() ? t.shape.arraySize : 1);
       texture = temp;
     }
-    return Attachment{texture, sr.level, t.arrayed() ? sr.slice : -1};
+    return Attachment{texture, GLint(sr.mip), t.arrayed() ? GLint(sr.slice) : -1};
   };
   GLuint tempSrc = 0, tempDst = 0;
   FramebufferKey readKey, drawKey;
@@ -229,8 +229,7 @@ void GLContext::ResolveSubresource(Resource* dst, uint32_t dstSub, Resource* src
   // Blits honour the scissor test and the colour mask of draw buffer 0.
   SetScissorTest(false);
   SetColorMask(0, 0xf);
-  const GLint w = GLint(d.shape.mipWidth(uint32_t(SubresourceOf(d.shape, dstSub).level)));
-  const GLint h = GLint(d.shape.mipHeight(uint32_t(SubresourceOf(d.shape, dstSub).level)));
+  const GLint w = GLint(dstSub.width), h = GLint(dstSub.height);
   glBlitNamedFramebuffer(readFbo, drawFbo, 0, 0, w, h, 0, 0, w, h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
   if (tempSrc) dev_.DeleteTexture(tempSrc);
   if (tempDst) dev_.DeleteTexture(tempDst);

@@ -18,23 +18,21 @@ class NullContext final : public detail::ContextBackend {
   // Copies into a staging resource are dropped too: its memory keeps what the CPU wrote, so a
   // readback shows zeros rather than anything resembling a GPU's result.
   void CopyResource(Resource*, Resource*) override {}
-  void CopySubresourceRegion(Resource*, uint32_t, uint32_t, uint32_t, uint32_t, Resource*, uint32_t, const BOX&) override {}
-  void UpdateSubresource(Resource*, uint32_t, const BOX&, const void*, uint32_t, uint32_t) override {}
+  void CopySubresourceRegion(Resource*, const detail::Subresource&, uint32_t, uint32_t, uint32_t, Resource*, const detail::Subresource&, const BOX&) override {}
+  void UpdateSubresource(Resource*, const detail::Subresource&, const BOX&, const void*, uint32_t, uint32_t) override {}
   void GenerateMips(ShaderResourceView*) override {}
-  void ResolveSubresource(Resource*, uint32_t, Resource*, uint32_t, FORMAT) override {}
+  void ResolveSubresource(Resource*, const detail::Subresource&, Resource*, const detail::Subresource&, FORMAT) override {}
   void CopyStructureCount(Buffer*, uint32_t, UnorderedAccessView*) override {}
   void SetUavCounter(UnorderedAccessView*, uint32_t) override {}
 
-  bool Map(Resource* r, uint32_t sub, MAP, uint32_t, MAPPED_SUBRESOURCE* out) override {
+  bool Map(Resource* r, const detail::Subresource& at, MAP, uint32_t, MAPPED_SUBRESOURCE* out) override {
     NullResource& data = detail::BackendAs<NullResource>(r);
-    std::vector<uint8_t>& block = data.subresources[sub];
+    std::vector<uint8_t>& block = data.subresources[at.index];
     if (r->GetType() == RESOURCE_DIMENSION_BUFFER) {
-      const uint32_t size = static_cast<Buffer*>(r)->GetDesc().ByteWidth;
-      block.resize(size);
-      out->RowPitch = out->DepthPitch = size;
+      block.resize(at.width);
+      out->RowPitch = out->DepthPitch = at.width;
     } else {
       const TextureShape& s = static_cast<Texture*>(r)->Shape();
-      const detail::Subresource at = detail::SubresourceOf(s, sub);
       out->RowPitch = at.width * GetFormatInfo(s.format).bytesPerElement;
       out->DepthPitch = out->RowPitch * at.height;
       block.resize(size_t(out->DepthPitch) * at.depth);
@@ -42,7 +40,7 @@ class NullContext final : public detail::ContextBackend {
     out->pData = block.data();
     return true;  // no GPU ever holds the resource, so MAP_FLAG_DO_NOT_WAIT never has to wait
   }
-  void Unmap(Resource*, uint32_t) override {}
+  void Unmap(Resource*, const detail::Subresource&) override {}
 
   void Begin(Query*) override {}
   void End(Query*) override {}

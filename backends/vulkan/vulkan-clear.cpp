@@ -186,12 +186,11 @@ void VulkanContext::GenerateMips(ShaderResourceView* srv) {
   CountWork();
 }
 
-void VulkanContext::ResolveSubresource(Resource* dst, uint32_t dstSub, Resource* src, uint32_t srcSub, FORMAT format) {
+void VulkanContext::ResolveSubresource(Resource* dst, const detail::Subresource& dstSr, Resource* src, const detail::Subresource& srcSr, FORMAT format) {
   const char* call = "ResolveSubresource";
   VkTextureObj &d = TextureOf(dst), &s = TextureOf(src);
   if (IsIntegerFormat(format))
     Throw(ErrorId::FORMAT_UNSUPPORTED, call, DescribeObject(src), std::string(FormatName(format)) + " cannot be resolved (integer formats have no MULTISAMPLE_RESOLVE)");
-  const detail::Subresource srcSr = detail::SubresourceOf(s.shape, srcSub), dstSr = detail::SubresourceOf(d.shape, dstSub);
   const uint32_t sm = srcSr.mip, slayer = srcSr.slice, dm = dstSr.mip, dlayer = dstSr.slice;
   VkFormat vf = VkFormatOf(format);
   VkCommandBuffer cmd = Cmd();

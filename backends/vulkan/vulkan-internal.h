@@ -469,14 +469,14 @@ class VulkanContext final : public detail::ContextBackend {
   void ClearDepthStencilView(DepthStencilView* dsv, uint32_t clearFlags, float depth, uint8_t stencil) override;
   void ClearUnorderedAccessView(UnorderedAccessView* uav, const detail::UavClearValue& value) override;
   void CopyResource(Resource* dst, Resource* src) override;
-  void CopySubresourceRegion(Resource* dst, uint32_t dstSubresource, uint32_t dstX, uint32_t dstY, uint32_t dstZ, Resource* src,
-                             uint32_t srcSubresource, const BOX& srcBox) override;
-  void UpdateSubresource(Resource* dst, uint32_t dstSubresource, const BOX& box, const void* data, uint32_t rowPitch,
+  void CopySubresourceRegion(Resource* dst, const detail::Subresource& dstSub, uint32_t dstX, uint32_t dstY, uint32_t dstZ, Resource* src,
+                             const detail::Subresource& srcSub, const BOX& srcBox) override;
+  void UpdateSubresource(Resource* dst, const detail::Subresource& dstSub, const BOX& box, const void* data, uint32_t rowPitch,
                          uint32_t depthPitch) override;
-  bool Map(Resource* resource, uint32_t subresource, MAP type, uint32_t flags, MAPPED_SUBRESOURCE* out) override;
-  void Unmap(Resource* resource, uint32_t subresource) override;
+  bool Map(Resource* resource, const detail::Subresource& sub, MAP type, uint32_t flags, MAPPED_SUBRESOURCE* out) override;
+  void Unmap(Resource* resource, const detail::Subresource& sub) override;
   void GenerateMips(ShaderResourceView* srv) override;
-  void ResolveSubresource(Resource* dst, uint32_t dstSubresource, Resource* src, uint32_t srcSubresource, FORMAT format) override;
+  void ResolveSubresource(Resource* dst, const detail::Subresource& dstSub, Resource* src, const detail::Subresource& srcSub, FORMAT format) override;
   void CopyStructureCount(Buffer* dst, uint32_t dstOffset, UnorderedAccessView* src) override;
   void SetUavCounter(UnorderedAccessView* uav, uint32_t value) override;
   void Begin(Query* query) override;
@@ -509,7 +509,7 @@ class VulkanContext final : public detail::ContextBackend {
 
   // Transfer helpers (vulkan-transfer.cpp)
   void UploadToBuffer(VkBufferObj& b, VkDeviceSize offset, const void* data, VkDeviceSize size);
-  void UploadToImage(VkTextureObj& t, uint32_t sub, const BOX& box, const void* data, uint32_t rowPitch, uint32_t depthPitch);
+  void UploadToImage(VkTextureObj& t, const detail::Subresource& sub, const BOX& box, const void* data, uint32_t rowPitch, uint32_t depthPitch);
   void ZeroImage(VkTextureObj& t);
   void ZeroBuffer(VkBufferObj& b);
 
@@ -558,13 +558,13 @@ class VulkanContext final : public detail::ContextBackend {
   void BindVertexBuffers(const PipelineState& s);
   void ResetCommandBufferState();
   // vulkan-transfer.cpp
-  void CopyImageToStaging(VkTextureObj& src, uint32_t srcSub, VkTextureObj& dst, uint32_t dstSub, const BOX& box, uint32_t x,
+  void CopyImageToStaging(VkTextureObj& src, const detail::Subresource& srcSub, VkTextureObj& dst, const detail::Subresource& dstSub, const BOX& box, uint32_t x,
                           uint32_t y, uint32_t z);
-  void CopyStagingToImage(VkTextureObj& src, uint32_t srcSub, VkTextureObj& dst, uint32_t dstSub, const BOX& box, uint32_t x,
+  void CopyStagingToImage(VkTextureObj& src, const detail::Subresource& srcSub, VkTextureObj& dst, const detail::Subresource& dstSub, const BOX& box, uint32_t x,
                           uint32_t y, uint32_t z);
-  void CopyStagingToStaging(VkTextureObj& src, uint32_t srcSub, VkTextureObj& dst, uint32_t dstSub, const BOX& box, uint32_t x,
+  void CopyStagingToStaging(VkTextureObj& src, const detail::Subresource& srcSub, VkTextureObj& dst, const detail::Subresource& dstSub, const BOX& box, uint32_t x,
                             uint32_t y, uint32_t z);
-  void CopyImageToImage(VkTextureObj& src, uint32_t srcSub, VkTextureObj& dst, uint32_t dstSub, const BOX& box, uint32_t x,
+  void CopyImageToImage(VkTextureObj& src, const detail::Subresource& srcSub, VkTextureObj& dst, const detail::Subresource& dstSub, const BOX& box, uint32_t x,
                         uint32_t y, uint32_t z);
   bool MapStaging(VkTextureObj& t, uint32_t sub, MAP type, uint32_t flags, MAPPED_SUBRESOURCE* out);
   bool WaitForMap(TrackedObject& o, MAP type, uint32_t flags);

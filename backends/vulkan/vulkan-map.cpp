@@ -108,7 +108,7 @@ bool VulkanContext::MapStaging(VkTextureObj& t, uint32_t sub, MAP type, uint32_t
   return true;
 }
 
-bool VulkanContext::Map(Resource* resource, uint32_t sub, MAP type, uint32_t flags, MAPPED_SUBRESOURCE* out) {
+bool VulkanContext::Map(Resource* resource, const detail::Subresource& sub, MAP type, uint32_t flags, MAPPED_SUBRESOURCE* out) {
   if (resource->GetType() == RESOURCE_DIMENSION_BUFFER) {
     VkBufferObj& b = BufferOf(resource);
     if (type != MAP_READ) b.contentVersion++;
@@ -122,20 +122,18 @@ bool VulkanContext::Map(Resource* resource, uint32_t sub, MAP type, uint32_t fla
     return true;
   }
   VkTextureObj& t = TextureOf(resource);
-  if (t.staging) return MapStaging(t, sub, type, flags, out);
+  if (t.staging) return MapStaging(t, sub.index, type, flags, out);
   // USAGE_DYNAMIC textures (WRITE_DISCARD only): CPU memory, uploaded in order on Unmap.
-  const TextureShape& s = t.shape;
-  uint32_t mip = detail::SubresourceOf(s, sub).mip;
-  uint32_t row = s.mipWidth(mip) * GetFormatInfo(s.format).bytesPerElement;
-  std::vector<uint8_t>& scratch = t.mapScratch[sub];
-  scratch.assign(size_t(row) * s.mipHeight(mip) * s.mipDepth(mip), 0);
+  uint32_t row = sub.width * GetFormatInfo(t.shape.format).bytesPerElement;
+  std::vector<uint8_t>& scratch = t.mapScratch[sub.index];
+  scratch.assign(size_t(row) * sub.height * sub.depth, 0);
   out->pData = scratch.data();
   out->RowPitch = row;
-  out->DepthPitch = row * s.mipHeight(mip);
+  out->DepthPitch = row * sub.height;
   return true;
 }
 
-void VulkanContext::Unmap(Resource* resource, uint32_t sub) {
+void VulkanContext::Unmap(Resource* resource, const detail::Subresource& sub) {
   if (resource->GetType() == RESOURCE_DIMENSION_BUFFER) {
     BufferOf(resource).contentVersion++;
     return;
@@ -148,13 +146,10 @@ void VulkanContext::Unmap(Resource* resource, uint32_t sub) {
     }
     return;
   }
-  auto it = t.mapScratch.find(sub);
+  auto it = t.mapScratch.find(sub.index);
   if (it == t.mapScratch.end()) return;
-  const TextureShape& s = t.shape;
-  uint32_t mip = detail::SubresourceOf(s, sub).mip;
-  uint32_t row = s.mipWidth(mip) * GetFormatInfo(s.format).bytesPerElement;
-  BOX box{0, 0, 0, s.mipWidth(mip), s.mipHeight(mip), s.mipDepth(mip)};
-  UploadToImage(t, sub, box, it->second.data(), row, row * s.mipHeight(mip));
+  uint32_t row = sub.width * GetFormatInfo(t.shape.format).bytesPerElement;
+  UploadToImage(t, sub, sub.box(), it->second.data(), row, row * sub.height);
   t.mapScratch.erase(it);
 }
 

@@ -165,12 +165,11 @@ std::unique_ptr<VkTextureObj> CreateTextureObj(VulkanDevice* dev, Texture& textu
 
   if (init) {
     for (uint32_t i = 0; i < s.subresourceCount(); ++i) {
-      uint32_t mip = detail::SubresourceOf(s, i).mip;
-      BOX box = detail::SubresourceOf(s, i).box();
+      const detail::Subresource at = detail::SubresourceOf(s, i);
       const SUBRESOURCE_DATA& sd = init[i];
-      uint32_t rowPitch = sd.SysMemPitch ? sd.SysMemPitch : s.mipWidth(mip) * GetFormatInfo(s.format).bytesPerElement;
-      uint32_t slicePitch = sd.SysMemSlicePitch ? sd.SysMemSlicePitch : rowPitch * s.mipHeight(mip);
-      dev->ctx->UploadToImage(*t, i, box, sd.pSysMem, rowPitch, slicePitch);
+      uint32_t rowPitch = sd.SysMemPitch ? sd.SysMemPitch : at.width * GetFormatInfo(s.format).bytesPerElement;
+      uint32_t slicePitch = sd.SysMemSlicePitch ? sd.SysMemSlicePitch : rowPitch * at.height;
+      dev->ctx->UploadToImage(*t, at, at.box(), sd.pSysMem, rowPitch, slicePitch);
     }
   } else {
     dev->ctx->ZeroImage(*t);

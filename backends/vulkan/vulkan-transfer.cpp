@@ -38,8 +38,7 @@ void VulkanContext::ZeroBuffer(VkBufferObj& b) {
   vkCmdFillBuffer(cmd, b.range.buffer, b.range.offset, b.range.size, 0);
 }
 
-void VulkanContext::UploadToImage(VkTextureObj& t, uint32_t sub, const BOX& box, const void* data, uint32_t rowPitch, uint32_t depthPitch) {
-  detail::Subresource loc = detail::SubresourceOf(t.shape, sub);
+void VulkanContext::UploadToImage(VkTextureObj& t, const detail::Subresource& loc, const BOX& box, const void* data, uint32_t rowPitch, uint32_t depthPitch) {
   uint32_t w = box.right - box.left, h = box.bottom - box.top, d = box.back - box.front;
   uint32_t texel = D3DTexelSize(t);
   uint64_t texels = uint64_t(w) * h * d;
@@ -106,7 +105,7 @@ void VulkanContext::ZeroImage(VkTextureObj& t) {
   }
 }
 
-void VulkanContext::UpdateSubresource(Resource* dst, uint32_t sub, const BOX& box, const void* data, uint32_t rowPitch, uint32_t depthPitch) {
+void VulkanContext::UpdateSubresource(Resource* dst, const detail::Subresource& sub, const BOX& box, const void* data, uint32_t rowPitch, uint32_t depthPitch) {
   if (dst->GetType() == RESOURCE_DIMENSION_BUFFER) {
     VkBufferObj& b = BufferOf(dst);
     // Host-visible memory is written in place when the GPU is done with it; a whole-buffer update
@@ -131,16 +130,18 @@ void VulkanContext::UpdateSubresource(Resource* dst, uint32_t sub, const BOX& bo
 void VulkanContext::CopyResource(Resource* dst, Resource* src) {
   if (dst->GetType() == RESOURCE_DIMENSION_BUFFER) {
     BOX box{0, 0, 0, BufferOf(src).desc.ByteWidth, 1, 1};
-    CopySubresourceRegion(dst, 0, 0, 0, 0, src, 0, box);
+    const detail::Subresource whole = detail::BufferSubresource(box.right);
+    CopySubresourceRegion(dst, whole, 0, 0, 0, src, whole, box);
     return;
   }
   const TextureShape& s = TextureOf(src).shape;
   for (uint32_t i = 0; i < s.subresourceCount(); ++i) {
-    CopySubresourceRegion(dst, i, 0, 0, 0, src, i, detail::SubresourceOf(s, i).box());
+    const detail::Subresource at = detail::SubresourceOf(s, i);
+    CopySubresourceRegion(dst, at, 0, 0, 0, src, at, at.box());
   }
 }
 
-void VulkanContext::CopySubresourceRegion(Resource* dst, uint32_t dstSub, uint32_t x, uint32_t y, uint32_t z, Resource* src, uint32_t srcSub,
+void VulkanContext::CopySubresourceRegion(Resource* dst, const detail::Subresource& dstSub, uint32_t x, uint32_t y, uint32_t z, Resource* src, const detail::Subresource& srcSub,
                                           const BOX& box) {
   if (dst->GetType() == RESOURCE_DIMENSION_BUFFER) {
     VkBufferObj &d = BufferOf(dst), &s = BufferOf(src);
@@ -161,15 +162,15 @@ void VulkanContext::CopySubresourceRegion(Resource* dst, uint32_t dstSub, uint32
   CountWork();
 }
 
-void VulkanContext::CopyImageToImage(VkTextureObj& s, uint32_t srcSub, VkTextureObj& d, uint32_t dstSub, const BOX& box, uint32_t x, uint32_t y,
+void VulkanContext::CopyImageToImage(VkTextureObj& s, const detail::Subresource& srcSub, VkTextureObj& d, const detail::Subresource& dstSub, const BOX& box, uint32_t x, uint32_t y,
                                      uint32_t z) {
-  detail::Subresource sl = detail::SubresourceOf(s.shape, srcSub), dl = detail::SubresourceOf(d.shape, dstSub);
+  const detail::Subresource &sl = srcSub, &dl = dstSub;
   VkExtent3D extent{box.right - box.left, box.bottom - box.top, box.back - box.front};
   VkOffset3D srcOff{int32_t(box.left), int32_t(box.top), int32_t(box.front)}, dstOff{int32_t(x), int32_t(y), int32_t(z)};
   VkCommandBuffer cmd = Cmd();
   bool depthS = IsDepthStencilFormat(s.format), depthD = IsDepthStencilFormat(d.format);
   if (depthS == depthD) {
-    bool self = &s == &d && srcSub == dstSub;
+    bool self = &s == &d && srcSub.index == dstSub.index;
     VkImageLayout srcLayout = self ? VK_IMAGE_LAYOUT_GENERAL : VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
     VkImageLayout dstLayout = self ? VK_IMAGE_LAYOUT_GENERAL : VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
     Access r = access::TransferRead(), w = access::TransferWrite();
@@ -204,10 +205,10 @@ void VulkanContext::CopyImageToImage(VkTextureObj& s, uint32_t srcSub, VkTexture
   vkCmdCopyBufferToImage(cmd, tmp.buffer, d.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &r2);
 }
 
-void VulkanContext::CopyImageToStaging(VkTextureObj& s, uint32_t srcSub, VkTextureObj& d, uint32_t dstSub, const BOX& box, uint32_t x, uint32_t y,
+void VulkanContext::CopyImageToStaging(VkTextureObj& s, const detail::Subresource& srcSub, VkTextureObj& d, const detail::Subresource& dstSub, const BOX& box, uint32_t x, uint32_t y,
                                        uint32_t z) {
-  detail::Subresource sl = detail::SubresourceOf(s.shape, srcSub), dl = detail::SubresourceOf(d.shape, dstSub);
-  const VkTextureObj::Sub& ds = d.subs[dstSub];
+  const detail::Subresource &sl = srcSub, &dl = dstSub;
+  const VkTextureObj::Sub& ds = d.subs[dstSub.index];
   VkExtent3D extent{box.right - box.left, box.bottom - box.top, box.back - box.front};
   VkOffset3D srcOff{int32_t(box.left), int32_t(box.top), int32_t(box.front)};
   uint32_t w = d.shape.mipWidth(dl.mip), h = d.shape.mipHeight(dl.mip);
@@ -235,10 +236,10 @@ void VulkanContext::CopyImageToStaging(VkTextureObj& s, uint32_t srcSub, VkTextu
   vkCmdCopyImageToBuffer(cmd, s.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, d.main.buffer, 1, &r);
 }
 
-void VulkanContext::CopyStagingToImage(VkTextureObj& s, uint32_t srcSub, VkTextureObj& d, uint32_t dstSub, const BOX& box, uint32_t x, uint32_t y,
+void VulkanContext::CopyStagingToImage(VkTextureObj& s, const detail::Subresource& srcSub, VkTextureObj& d, const detail::Subresource& dstSub, const BOX& box, uint32_t x, uint32_t y,
                                        uint32_t z) {
-  detail::Subresource sl = detail::SubresourceOf(s.shape, srcSub), dl = detail::SubresourceOf(d.shape, dstSub);
-  const VkTextureObj::Sub& ss = s.subs[srcSub];
+  const detail::Subresource &sl = srcSub, &dl = dstSub;
+  const VkTextureObj::Sub& ss = s.subs[srcSub.index];
   VkExtent3D extent{box.right - box.left, box.bottom - box.top, box.back - box.front};
   VkOffset3D dstOff{int32_t(x), int32_t(y), int32_t(z)};
   uint32_t w = s.shape.mipWidth(sl.mip), h = s.shape.mipHeight(sl.mip);
@@ -264,9 +265,9 @@ void VulkanContext::CopyStagingToImage(VkTextureObj& s, uint32_t srcSub, VkTextu
   vkCmdCopyBufferToImage(cmd, s.main.buffer, d.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &r);
 }
 
-void VulkanContext::CopyStagingToStaging(VkTextureObj& s, uint32_t srcSub, VkTextureObj& d, uint32_t dstSub, const BOX& box, uint32_t x, uint32_t y,
+void VulkanContext::CopyStagingToStaging(VkTextureObj& s, const detail::Subresource& srcSub, VkTextureObj& d, const detail::Subresource& dstSub, const BOX& box, uint32_t x, uint32_t y,
                                          uint32_t z) {
-  const VkTextureObj::Sub &ss = s.subs[srcSub], &ds = d.subs[dstSub];
+  const VkTextureObj::Sub &ss = s.subs[srcSub.index], &ds = d.subs[dstSub.index];
   uint32_t texel = D3DTexelSize(s);
   VkCommandBuffer cmd = Cmd();
   UseRange(s.mainState, access::TransferRead());
@@ -287,8 +288,7 @@ void VulkanContext::CopyStagingToStaging(VkTextureObj& s, uint32_t srcSub, VkTex
     UseRange(d.depthPlaneState, access::TransferWrite());
     UseRange(d.stencilPlaneState, access::TransferWrite());
     FlushBarriers();
-    const detail::Subresource sr = detail::SubresourceOf(s.shape, srcSub);
-    VkDeviceSize texels = VkDeviceSize(sr.width) * sr.height * sr.depth;
+    VkDeviceSize texels = VkDeviceSize(srcSub.width) * srcSub.height * srcSub.depth;
     VkBufferCopy dc{s.depthPlane.offset + ss.depthOffset, d.depthPlane.offset + ds.depthOffset, texels * 4};
     VkBufferCopy sc{s.stencilPlane.offset + ss.stencilOffset, d.stencilPlane.offset + ds.stencilOffset, texels};
     vkCmdCopyBuffer(cmd, s.depthPlane.buffer, d.depthPlane.buffer, 1, &dc);

@@ -62,15 +62,16 @@ class ContextBackend {
   virtual void ClearUnorderedAccessView(UnorderedAccessView* uav, const UavClearValue& value) = 0;
   virtual void CopyResource(Resource* dst, Resource* src) = 0;
   // srcBox is never null here (the core fills the whole subresource when D3D11's is null).
-  virtual void CopySubresourceRegion(Resource* dst, uint32_t dstSubresource, uint32_t dstX, uint32_t dstY, uint32_t dstZ,
-                                     Resource* src, uint32_t srcSubresource, const BOX& srcBox) = 0;
-  virtual void UpdateSubresource(Resource* dst, uint32_t dstSubresource, const BOX& box, const void* data,
+  // Subresources arrive validated and decomposed (subresource.h); a buffer's is BufferSubresource.
+  virtual void CopySubresourceRegion(Resource* dst, const Subresource& dstSub, uint32_t dstX, uint32_t dstY, uint32_t dstZ,
+                                     Resource* src, const Subresource& srcSub, const BOX& srcBox) = 0;
+  virtual void UpdateSubresource(Resource* dst, const Subresource& dstSub, const BOX& box, const void* data,
                                  uint32_t rowPitch, uint32_t depthPitch) = 0;
   // Returns false only for MAP_FLAG_DO_NOT_WAIT when the GPU still uses the resource.
-  virtual bool Map(Resource* resource, uint32_t subresource, MAP type, uint32_t flags, MAPPED_SUBRESOURCE* out) = 0;
-  virtual void Unmap(Resource* resource, uint32_t subresource) = 0;
+  virtual bool Map(Resource* resource, const Subresource& sub, MAP type, uint32_t flags, MAPPED_SUBRESOURCE* out) = 0;
+  virtual void Unmap(Resource* resource, const Subresource& sub) = 0;
   virtual void GenerateMips(ShaderResourceView* srv) = 0;
-  virtual void ResolveSubresource(Resource* dst, uint32_t dstSubresource, Resource* src, uint32_t srcSubresource, FORMAT format) = 0;
+  virtual void ResolveSubresource(Resource* dst, const Subresource& dstSub, Resource* src, const Subresource& srcSub, FORMAT format) = 0;
   virtual void CopyStructureCount(Buffer* dst, uint32_t dstOffset, UnorderedAccessView* src) = 0;
   // Sets the hidden counter of an append/consume UAV (the pUAVInitialCounts of D3D11).
   virtual void SetUavCounter(UnorderedAccessView* uav, uint32_t value) = 0;

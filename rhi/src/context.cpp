@@ -459,16 +459,13 @@ static void CheckSubresource(const Resource* r, uint32_t sub, const char* call) 
          "subresource " + std::to_string(sub) + " does not exist (the resource has " + std::to_string(SubresourceCount(r)) + ")");
 }
 
-// The extent of one subresource as a BOX.
-static BOX SubresourceBox(const Resource* r, uint32_t sub) {
-  BOX b;
-  if (const Buffer* buf = AsBuffer(r)) {
-    b.right = buf->GetDesc().ByteWidth;
-    b.bottom = b.back = 1;
-    return b;
-  }
-  return SubresourceOf(AsTexture(r)->Shape(), sub).box();
+// One (validated) subresource, decomposed: what the backends get.
+static Subresource Decompose(const Resource* r, uint32_t sub) {
+  if (const Buffer* buf = AsBuffer(r)) return BufferSubresource(buf->GetDesc().ByteWidth);
+  return SubresourceOf(AsTexture(r)->Shape(), sub);
 }
+
+static BOX SubresourceBox(const Resource* r, uint32_t sub) { return Decompose(r, sub).box(); }
 
 static bool SameCopyFamily(FORMAT a, FORMAT b) {
   return a == b || (GetFormatInfo(a).typelessFamily != FORMAT_UNKNOWN && GetFormatInfo(a).typelessFamily == GetFormatInfo(b).typelessFamily);
@@ -539,7 +536,7 @@ void DeviceContext::CopySubresourceRegion(Resource* dst, uint32_t dstSub, uint32
     if ((a.sampleCount > 1 || (a.bindFlags & BIND_DEPTH_STENCIL) || (b.bindFlags & BIND_DEPTH_STENCIL)) && !whole)
       Fail(ErrorId::COPY_INVALID, call, Describe(dst), "depth-stencil and multisampled resources can only be copied whole");
   }
-  backend_->CopySubresourceRegion(dst, dstSub, x, y, z, src, srcSub, box);
+  backend_->CopySubresourceRegion(dst, Decompose(dst, dstSub), x, y, z, src, Decompose(src, srcSub), box);
 }
 
 void DeviceContext::UpdateSubresource(Resource* dst, uint32_t sub, const BOX* pBox, const void* data, uint32_t rowPitch, uint32_t depthPitch) {
@@ -566,7 +563,7 @@ void DeviceContext::UpdateSubresource(Resource* dst, uint32_t sub, const BOX* pB
   if (box.left >= box.right || box.top >= box.bottom || box.front >= box.back) return;
   if (box.right > extent.right || box.bottom > extent.bottom || box.back > extent.back)
     Fail(ErrorId::SUBRESOURCE_OUT_OF_RANGE, call, Describe(dst), "pDstBox reaches outside the subresource");
-  backend_->UpdateSubresource(dst, sub, box, data, rowPitch, depthPitch);
+  backend_->UpdateSubresource(dst, Decompose(dst, sub), box, data, rowPitch, depthPitch);
 }
 
 void DeviceContext::CopyStructureCount(Buffer* dst, uint32_t offset, UnorderedAccessView* src) {
@@ -617,7 +614,7 @@ CallStatus DeviceContext::Map(Resource* r, uint32_t sub, MAP type, uint32_t flag
   }
   for (auto& m : mapped_)
     if (m.first == r && m.second == sub) Fail(ErrorId::MAP_INVALID, call, Describe(r), "subresource " + std::to_string(sub) + " is already mapped");
-  if (!backend_->Map(r, sub, type, flags, out)) return CallStatus(DXGI_ERROR_WAS_STILL_DRAWING);
+  if (!backend_->Map(r, Decompose(r, sub), type, flags, out)) return CallStatus(DXGI_ERROR_WAS_STILL_DRAWING);
   mapped_.push_back({r, sub});
   return CallStatus(S_OK);
 }
@@ -626,7 +623,7 @@ void DeviceContext::Unmap(Resource* r, uint32_t sub) {
   auto it = std::find(mapped_.begin(), mapped_.end(), std::pair<Resource*, uint32_t>(r, sub));
   if (it == mapped_.end()) Fail(ErrorId::MAP_INVALID, "Unmap", Describe(r), "subresource " + std::to_string(sub) + " is not mapped");
   mapped_.erase(it);
-  backend_->Unmap(r, sub);
+  backend_->Unmap(r, Decompose(r, sub));
 }
 
 void DeviceContext::GenerateMips(ShaderResourceView* srv) {
@@ -655,7 +652,7 @@ void DeviceContext::ResolveSubresource(Resource* dst, uint32_t dstSub, Resource*
     Fail(ErrorId::VIEW_FORMAT_INCOMPATIBLE, call, Describe(dst), std::string(FormatName(format)) + " is not compatible with both resources");
   BOX a = SubresourceBox(dst, dstSub), b = SubresourceBox(src, srcSub);
   if (a.right != b.right || a.bottom != b.bottom) Fail(ErrorId::COPY_INVALID, call, Describe(dst), "sizes differ from " + Describe(src));
-  backend_->ResolveSubresource(dst, dstSub, src, srcSub, format);
+  backend_->ResolveSubresource(dst, Decompose(dst, dstSub), src, Decompose(src, srcSub), format);
 }
 
 // ---------------------------------------------------------------------------------------------
