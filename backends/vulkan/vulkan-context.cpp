@@ -277,11 +277,15 @@ void VulkanContext::Draw(const PipelineState& s, uint32_t dirty, const detail::D
     }
   }
   ResolveDescriptors(s, ShaderStage::Vertex, vs, scratchItems_, scratchOffsets_, call);
-  BindDescriptors(gfxSets_[0], vs.setLayout, scratchItems_, scratchOffsets_, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0);
+  const bool bindVs = PrepareDescriptors(gfxSets_[0], vs.setLayout, scratchItems_, scratchOffsets_, layout);
+  bool bindPs = false;
   if (ps) {
     ResolveDescriptors(s, ShaderStage::Pixel, *ps, scratchItems_, scratchOffsets_, call);
-    BindDescriptors(gfxSets_[1], ps->setLayout, scratchItems_, scratchOffsets_, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 1);
+    bindPs = PrepareDescriptors(gfxSets_[1], ps->setLayout, scratchItems_, scratchOffsets_, layout);
   }
+  if (bindVs && bindPs) BindSets(VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, &gfxSets_[0], &gfxSets_[1]);
+  else if (bindVs) BindSets(VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, &gfxSets_[0]);
+  else if (bindPs) BindSets(VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 1, &gfxSets_[1]);
 
   switch (args.kind) {
     case detail::DrawArgs::Draw: vkCmdDraw(cmd, args.count, args.instanceCount, args.start, args.startInstance); break;
@@ -320,7 +324,8 @@ void VulkanContext::Dispatch(const PipelineState& s, uint32_t dirty, uint32_t x,
     boundCompute_ = p;
   }
   ResolveDescriptors(s, ShaderStage::Compute, cs, scratchItems_, scratchOffsets_, call);
-  BindDescriptors(computeSet_, cs.setLayout, scratchItems_, scratchOffsets_, VK_PIPELINE_BIND_POINT_COMPUTE, cs.computeLayout, 0);
+  if (PrepareDescriptors(computeSet_, cs.setLayout, scratchItems_, scratchOffsets_, cs.computeLayout))
+    BindSets(VK_PIPELINE_BIND_POINT_COMPUTE, cs.computeLayout, 0, &computeSet_);
   if (argsBuffer) {
     const VkBufferObj& ab = BufferOf(argsBuffer);
     vkCmdDispatchIndirect(cmd, ab.range.buffer, ab.range.offset + argsOffset);

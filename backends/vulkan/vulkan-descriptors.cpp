@@ -186,8 +186,8 @@ void VulkanContext::ResolveDescriptors(const PipelineState& s, ShaderStage stage
   }
 }
 
-bool VulkanContext::BindDescriptors(StageDescriptors& sd, VkDescriptorSetLayout layout, std::vector<DescriptorItem>& items,
-                                    std::vector<uint32_t>& dynamicOffsets, VkPipelineBindPoint point, VkPipelineLayout pipeLayout, uint32_t setIndex) {
+bool VulkanContext::PrepareDescriptors(StageDescriptors& sd, VkDescriptorSetLayout layout, std::vector<DescriptorItem>& items,
+                                       std::vector<uint32_t>& dynamicOffsets, VkPipelineLayout pipeLayout) {
   if (items.empty()) return false;
   bool rewrite = !(sd.set && sd.layout == layout && sd.items == items);
   CachedSet* cached = nullptr;
@@ -242,12 +242,25 @@ bool VulkanContext::BindDescriptors(StageDescriptors& sd, VkDescriptorSetLayout 
     sd.layout = layout;
     sd.items.swap(items);
   }
-  if (rewrite || sd.boundWith != pipeLayout || sd.dynamicOffsets != dynamicOffsets) {
-    vkCmdBindDescriptorSets(cur_->cmd, point, pipeLayout, setIndex, 1, &sd.set, uint32_t(dynamicOffsets.size()), dynamicOffsets.data());
-    sd.boundWith = pipeLayout;
-    sd.dynamicOffsets.swap(dynamicOffsets);
+  if (!rewrite && sd.boundWith == pipeLayout && sd.dynamicOffsets == dynamicOffsets) return false;
+  sd.boundWith = pipeLayout;
+  sd.dynamicOffsets.swap(dynamicOffsets);
+  return true;
+}
+
+void VulkanContext::BindSets(VkPipelineBindPoint point, VkPipelineLayout pipeLayout, uint32_t firstSet, const StageDescriptors* first,
+                             const StageDescriptors* second) {
+  if (!second) {
+    vkCmdBindDescriptorSets(cur_->cmd, point, pipeLayout, firstSet, 1, &first->set, uint32_t(first->dynamicOffsets.size()),
+                            first->dynamicOffsets.data());
+    return;
   }
-  return rewrite;
+  // One call for neighbouring sets: lavapipe allocates per call (it copies the set and offset
+  // arrays into its command stream), the largest per-draw cost left in docs/rhi-cost.md.
+  const VkDescriptorSet sets[2] = {first->set, second->set};
+  bindOffsets_.assign(first->dynamicOffsets.begin(), first->dynamicOffsets.end());
+  bindOffsets_.insert(bindOffsets_.end(), second->dynamicOffsets.begin(), second->dynamicOffsets.end());
+  vkCmdBindDescriptorSets(cur_->cmd, point, pipeLayout, firstSet, 2, sets, uint32_t(bindOffsets_.size()), bindOffsets_.data());
 }
 
 }  // namespace sp::vk

@@ -544,8 +544,14 @@ class VulkanContext final : public detail::ContextBackend {
                           const char* call);
   void TrackStageResources(const PipelineState& s, ShaderStage stage, const VkShaderObj& sh);
   void CheckSampling(const PipelineState& s, ShaderStage stage, const VkShaderObj& sh, const char* call);
-  bool BindDescriptors(StageDescriptors& sd, VkDescriptorSetLayout layout, std::vector<DescriptorItem>& items, std::vector<uint32_t>& dynamicOffsets,
-                       VkPipelineBindPoint point, VkPipelineLayout pipeLayout, uint32_t setIndex);
+  // Writes (or finds in the batch's cache) the set holding `items` into sd; true when sd must be
+  // bound again (new set, other pipeline layout or new dynamic offsets). Swaps `items` and
+  // `dynamicOffsets` out.
+  bool PrepareDescriptors(StageDescriptors& sd, VkDescriptorSetLayout layout, std::vector<DescriptorItem>& items,
+                          std::vector<uint32_t>& dynamicOffsets, VkPipelineLayout pipeLayout);
+  // Binds first's set at firstSet, and second's (when given) at firstSet + 1 in the same call.
+  void BindSets(VkPipelineBindPoint point, VkPipelineLayout pipeLayout, uint32_t firstSet, const StageDescriptors* first,
+                const StageDescriptors* second = nullptr);
   VkImageLayout SrvLayout(const PipelineState& s, const VkViewObj& v) const;
   // vulkan-pipeline.cpp
   VkPipeline GraphicsPipeline(const PipelineState& s, VkPipelineLayout layout, const char* call);
@@ -620,6 +626,7 @@ class VulkanContext final : public detail::ContextBackend {
   };
   std::unordered_map<uint64_t, CachedSet> setCache_;
   std::vector<uint32_t> scratchOffsets_;
+  std::vector<uint32_t> bindOffsets_;  // both graphics sets' dynamic offsets, for one bind call
   std::array<std::array<RepackedConstants, COMMONSHADER_CONSTANT_BUFFER_API_SLOT_COUNT>, SHADER_STAGE_COUNT> repacked_{};
   std::vector<VkQueryObj*> activeQueries_;
   std::shared_ptr<QuerySegment> segment_;  // the occlusion query running now
