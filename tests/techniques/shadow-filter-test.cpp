@@ -149,15 +149,21 @@ glm::vec2 Rotation(glm::vec2 pixel) {
 }
 
 // The taps of the SampleCmp-based filters; `disk` is the Poisson table (read from the shader).
+// C(n, k), exact in double for the widths used (at most C(14, 7) = 3432).
+double Binomial(int n, int k) {
+  double c = 1;
+  for (int i = 1; i <= k; ++i) c = c * (n - k + i) / i;
+  return c;
+}
+
 std::vector<Tap> Taps(Filter filter, int n, const Query& q, const std::vector<glm::vec2>& disk) {
-  static const double kBinomial[4][9] = {{1, 2, 1}, {1, 4, 6, 4, 1}, {1, 6, 15, 20, 15, 6, 1}, {1, 8, 28, 56, 70, 56, 28, 8, 1}};
   std::vector<Tap> taps;
   const int h = n / 2;
   if (filter == kHw2x2) taps.push_back({{0, 0}, 1.0});
   if (filter == kBox || filter == kGauss)
     for (int y = -h; y <= h; ++y)
       for (int x = -h; x <= h; ++x)
-        taps.push_back({{float(x), float(y)}, filter == kBox ? 1.0 / (n * n) : kBinomial[h - 1][x + h] * kBinomial[h - 1][y + h] / std::pow(4.0, n - 1)});
+        taps.push_back({{float(x), float(y)}, filter == kBox ? 1.0 / (n * n) : Binomial(n - 1, x + h) * Binomial(n - 1, y + h) / std::pow(4.0, n - 1)});
   if (filter == kPoisson) {
     glm::vec2 r = Rotation(q.pixel);
     for (glm::vec2 p : disk) {
@@ -419,6 +425,20 @@ TEST_P(ShadowFilterTest, GatherCmpBuildsTheBoxKernel) {
     conformance::Result r = worst.Finish("abs");
     EXPECT_EQ(r.status, conformance::Status::Pass) << n << "x" << n << ": " << r.detail;
     EXPECT_GT(compared, int(qs.size() * 3 / 4)) << n << "x" << n;
+  }
+}
+
+// The wide kernels (loops, not unrolled: SHADOW_UNROLL_MAX) against the same CPU kernels: box,
+// gauss and poisson up to 15, gathercmp up to 31 (wider than the 32-texel map's half: clamping
+// into uvClamp is exercised on every query). Gauss 15's weights are integers up to 3432^2 < 2^24
+// over 4^14: exact in float, so its tolerance is the taps' alone.
+TEST_P(ShadowFilterTest, WideKernelsMatchTheirCpuKernels) {
+  std::vector<Query> qs = GeneralQueries();
+  const std::pair<Filter, int> cases[] = {{kBox, 11}, {kBox, 15}, {kGauss, 13}, {kGauss, 15}, {kPoisson, 15}, {kGatherCmp, 15}, {kGatherCmp, 31}};
+  for (auto [filter, n] : cases) {
+    std::vector<float> got = rig_->Filtered(filter, n, qs);
+    ExpectMatchesCpu(filter, n, qs, got);
+    ExpectPartlyLit(std::string(kFilterNames[filter]) + " " + std::to_string(n), got);
   }
 }
 
