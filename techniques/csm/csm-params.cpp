@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "csm-technique.h"
+#include "pcf-params.h"
 
 namespace sp::tech::csm {
 
@@ -25,7 +26,7 @@ std::vector<ParamSpec> CsmParams() {
       {P::Choice, "focus", "receivers: fit to the slice within the scene and its casters; scene: slice and whole scene depth", "receivers", 0, 0, {"scene", "receivers"}},
       {P::Choice, "filter", "shadow filter: PCF (common/shadow-filter.hlsli) or moments (moments/moments.hlsli; storage=array only)", "hw2x2", 0,
        0, filters},
-      {P::Choice, "kernel", "filter kernel width in texels (box, gauss, gathercmp, poisson)", "3", 0, 0, {"3", "5", "7", "9"}},
+      PcfKernelParam("box, gauss, gathercmp, poisson"),
       {P::Choice, "bias",
        "const: DepthBias; slope: + SlopeScaledDepthBias; normal: normal offset + DepthBias; receiver-plane: depth gradient + DepthBias "
        "(moment filters: no depth bias; bias=normal applies its normal offset)",
@@ -75,6 +76,7 @@ CsmSettings SettingsFrom(const ParamValues& p, const std::string& technique) {
   for (int i = 0; i < 5; ++i)
     if (filter == filters[i]) s.filter = i;
   s.kernel = p.getInt("kernel");
+  CheckPcfKernel("csm", s.filter, s.kernel);
   s.moments = IsMomentFilter(filter);
   s.anisotropy = std::stoi(p.getChoice("anisotropy"));
   {
