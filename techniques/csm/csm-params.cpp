@@ -11,7 +11,7 @@ namespace sp::tech::csm {
 
 std::vector<ParamSpec> CsmParams() {
   using P = ParamSpec;
-  std::vector<std::string> filters = {"hw2x2", "box", "gauss", "gathercmp", "poisson"};
+  std::vector<std::string> filters = PcfFilterNames();
   for (const std::string& m : MomentFilterNames()) filters.push_back(m);
   std::vector<ParamSpec> specs = {
       {P::Int, "cascades", "number of cascades (1 = one map focused on the view)", "4", 1, 8, {}},
@@ -36,6 +36,7 @@ std::vector<ParamSpec> CsmParams() {
       {P::Float, "normal_offset", "bias=normal: offset along the normal in texels of the cascade", "1.0", 0, 16, {}},
       {P::Int, "resolution", "width and height of each cascade's region in texels", "1024", 16, 8192, {}},
   };
+  for (const ParamSpec& p : PcssParamSpecs(PcssLight::Directional)) specs.push_back(p);
   // msaa, blur, bleed, exponents, precision: used by the moment filters only.
   for (ParamSpec m : MomentParamSpecs()) {
     m.help += " (moment filters only)";
@@ -72,9 +73,8 @@ CsmSettings SettingsFrom(const ParamValues& p, const std::string& technique) {
   s.select = p.getChoice("select") == "map" ? Select::Map : Select::Interval;
   s.storage = p.getChoice("storage") == "atlas" ? Storage::Atlas : Storage::Array;
   const std::string& filter = p.getChoice("filter");
-  const std::string filters[] = {"hw2x2", "box", "gauss", "gathercmp", "poisson"};
-  for (int i = 0; i < 5; ++i)
-    if (filter == filters[i]) s.filter = i;
+  s.filter = std::max(PcfFilterIndex(filter), 0);
+  s.pcss = PcssSettingsFrom(p);
   s.kernel = p.getInt("kernel");
   CheckPcfKernel("csm", s.filter, s.kernel);
   s.moments = IsMomentFilter(filter);
@@ -103,7 +103,8 @@ CsmSettings SettingsFrom(const ParamValues& p, const std::string& technique) {
   // filter, and the bilinear moment lookup at mip 0, read one texel beyond their centre; a k-wide
   // kernel k/2 plus that one), and the normal offset, which moves the lookup away from the point
   // the cascade was chosen for.
-  uint32_t reach = s.filter == 0 || s.moments ? 1u : uint32_t(s.kernel / 2 + 1);
+  // pcss: its box reaches half the widest kernel, rounded up, plus the texel it ends in.
+  uint32_t reach = s.filter == 0 || s.moments ? 1u : s.filter == kPcssFilter ? uint32_t((s.pcss.maxKernel + 1) / 2 + 1) : uint32_t(s.kernel / 2 + 1);
   if (s.bias == Bias::Normal) reach += uint32_t(std::ceil(s.normalOffset));
   f.padTexels = reach;
   if (f.resolution < 8 * f.padTexels)

@@ -1,5 +1,5 @@
-// PCSS (filter=pcss, shaders-hlsl/common/shadow-pcss.hlsli) in basic (the sun, orthographic map)
-// and spot (perspective map): a thin plank at a known height over a floor, its straight edge
+// PCSS (filter=pcss, shaders-hlsl/common/shadow-pcss.hlsli) in basic and csm (the sun,
+// orthographic maps) and spot (perspective map): a thin plank at a known height over a floor, its straight edge
 // above x = 0, the camera under the plank looking down. Across the edge the lab's visibility must
 // ramp from 0 to 1 over the penumbra the light's size gives by geometry (computed here on the
 // CPU), centred on the edge's shadow; 1 past it, 0 in the umbra; twice the light, twice the ramp.
@@ -30,8 +30,8 @@ constexpr float kSpotHeight = 4.0f, kSpotOuterDegrees = 30.0f;
 constexpr uint32_t kSize = 128, kResolution = 512;
 
 // Floor [-3, 3]^2 at y = 0; plank x in [-3, 0], z in [-2.5, 2.5], y in [2, 2.02]. Camera at
-// y = 1, under the plank, looking straight down, image x = world x.
-scene::Scene PlankScene(bool spot) {
+// `cameraHeight`, under the plank, looking straight down, image x = world x.
+scene::Scene PlankScene(bool spot, float cameraHeight = 1.0f) {
   scene::Scene s;
   s.name = spot ? "pcss-plank-spot" : "pcss-plank";
   uint32_t plane = s.addMesh(scene::MakePlane(1));
@@ -39,7 +39,7 @@ scene::Scene PlankScene(bool spot) {
   s.addInstance(plane, glm::scale(glm::mat4(1.0f), glm::vec3(6, 1, 6)), glm::vec3(0.8f));
   glm::mat4 plank = glm::translate(glm::mat4(1.0f), glm::vec3(-1.5f, kPlankHeight, 0.0f));
   s.addInstance(box, glm::scale(plank, glm::vec3(3.0f, kPlankTop - kPlankBottom, 5.0f)), glm::vec3(0.8f));
-  s.camera.position = {0.0f, 1.0f, 0.001f};
+  s.camera.position = {0.0f, cameraHeight, 0.001f};
   s.camera.target = {0.0f, 0.0f, 0.0f};
   s.camera.up = {0.0f, 0.0f, -1.0f};
   s.camera.fovY = glm::radians(50.0f);
@@ -106,7 +106,7 @@ Ramp MeasureRamp(const tech::LabBuffers& lab) {
 class PcssTest : public BackendTest {
  protected:
   tech::LabBuffers Render(const std::string& technique, const scene::Scene& s, std::map<std::string, std::string> params) {
-    params["resolution"] = std::to_string(kResolution);
+    params.emplace("resolution", std::to_string(kResolution));
     params["filter"] = "pcss";
     params.emplace("pcss_max_kernel", "31");
     std::unique_ptr<tech::Technique> t = tech::CreateTechnique(technique);
@@ -119,11 +119,11 @@ class PcssTest : public BackendTest {
   }
 
   // The ramp's width and centre against the geometry, and exact 1 and 0 past its ends.
-  Ramp ExpectPenumbra(const std::string& what, const tech::LabBuffers& lab, double want, double texel) {
+  Ramp ExpectPenumbra(const std::string& what, const tech::LabBuffers& lab, double want, double texel, double cameraHeight = 1.0) {
     Ramp r = MeasureRamp(lab);
     std::printf("%s: penumbra %.5f (10-90 %% %.5f), geometry %.5f, ratio %.4f, centre %.5f\n", what.c_str(), r.width(), r.x90 - r.x10, want,
                 r.width() / want, r.centre());
-    const double pixel = 2.0 * std::tan(glm::radians(25.0)) / kSize;  // at the floor, 1 below the camera
+    const double pixel = cameraHeight * 2.0 * std::tan(glm::radians(25.0)) / kSize;  // at the floor
     EXPECT_NEAR(r.width(), want, 0.02 * want) << what << ": 10-90 % distance " << r.x90 - r.x10;
     EXPECT_NEAR(r.centre(), 0.0, texel + pixel) << what;
     const double margin = 0.5 * want * 1.02 + 2 * texel + pixel;
@@ -159,6 +159,21 @@ TEST_P(PcssTest, SpotPenumbraFollowsSimilarTriangles) {
   EXPECT_NEAR(large.width() / small.width(), 2.0, 0.04);
 }
 
+// csm: each cascade is its own orthographic map with its own world texel size, which the fit
+// makes from the view and the resolution: the penumbra must not change with either. The camera
+// at 0.4 sees 0.37 of floor; the cascade covering it is about 0.41 wide, 0.0026 per texel at 160
+// and 0.0016 at 256 (texel bound for the centre and margins: 0.005); 1.2 degrees is a 0.042
+// penumbra: 14.5 pixels, 16 and 26 texels (under pcss_max_kernel, 31).
+TEST_P(PcssTest, CsmPenumbraDoesNotDependOnTheCascadeFit) {
+  const float height = 0.4f;
+  scene::Scene s = PlankScene(false, height);
+  for (auto [cascades, resolution] : {std::pair{"1", "160"}, {"3", "160"}, {"3", "256"}}) {
+    std::string what = std::string("csm cascades=") + cascades + " resolution=" + resolution + " light_size=1.2";
+    tech::LabBuffers lab = Render("csm", s, {{"light_size", "1.2"}, {"cascades", cascades}, {"resolution", resolution}});
+    ExpectPenumbra(what, lab, SunPenumbra(1.2), 0.005, height);
+  }
+}
+
 // A penumbra wider than pcss_max_kernel is clamped to it: 4 degrees wants 12 texels, 5 gives 5.
 TEST_P(PcssTest, MaxKernelClampsThePenumbra) {
   scene::Scene s = PlankScene(false);
@@ -180,7 +195,7 @@ TEST_P(PcssValidationTest, OutOfRangeParametersAreNamed) {
       {"kernel", {{"filter", "box"}, {"kernel", "17"}}},
       {"kernel", {{"filter", "gauss"}, {"kernel", "31"}}},
   };
-  for (const std::string technique : {"basic", "spot"})
+  for (const std::string technique : {"basic", "spot", "csm"})
     for (const auto& [name, params] : cases) {
       if (technique == "spot" && name == "light_size" && params.at("light_size") == "45") continue;  // a radius: 45 is valid
       std::unique_ptr<tech::Technique> t = tech::CreateTechnique(technique);
@@ -191,6 +206,14 @@ TEST_P(PcssValidationTest, OutOfRangeParametersAreNamed) {
         EXPECT_NE(std::string(e.what()).find(name + "="), std::string::npos) << e.what();
       }
     }
+  // sdsm writes its cascades' constants on the GPU without PCSS's: refused by name.
+  std::unique_ptr<tech::Technique> sdsm = tech::CreateTechnique("sdsm");
+  try {
+    sdsm->Configure(device(), tech::ParamValues::Parse("sdsm", sdsm->Params(), {{"filter", "pcss"}}));
+    ADD_FAILURE() << "sdsm: expected an error for filter=pcss";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("filter=pcss"), std::string::npos) << e.what();
+  }
   // gathercmp takes 31.
   std::unique_ptr<tech::Technique> t = tech::CreateTechnique("basic");
   EXPECT_NO_THROW(t->Configure(device(), tech::ParamValues::Parse("basic", t->Params(), {{"filter", "gathercmp"}, {"kernel", "31"}})));
