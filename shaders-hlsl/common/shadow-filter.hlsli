@@ -106,8 +106,8 @@ static const float kShadowBinomial[11] = {1, 10, 45, 120, 210, 252, 210, 120, 45
 #elif SHADOW_KERNEL == 13
 static const float kShadowBinomial[13] = {1, 12, 66, 220, 495, 792, 924, 792, 495, 220, 66, 12, 1};
 #else
-// Wider (gathercmp 17..31) only to keep the array declared; gauss stops at 15. The largest
-// product, 3432^2 < 2^24, and the sum 4^14 = 2^28 (a power of two) are exact in float.
+// 15 (gathercmp 17..31 do not read it; gauss stops at 15). The largest product, 3432^2 < 2^24,
+// and the sum 4^14 = 2^28 (a power of two) are exact in float.
 static const float kShadowBinomial[15] = {1, 14, 91, 364, 1001, 2002, 3003, 3432, 3003, 2002, 1001, 364, 91, 14, 1};
 #endif
 
