@@ -115,6 +115,24 @@ struct MathCase {
   glm::vec4 a{0.0f}, b{0.0f}, mode{0.0f};  // mode.x as above
 };
 
+// ShadowFilterPcss with an orthographic ShadowPcssInput from the defines PCSS_NEAR, PCSS_FAR,
+// PCSS_SCALE, PCSS_TAPS and PCSS_MAX.
+const char* const kPcssShader = R"(
+#define SHADOW_FILTER 5
+#include "common/shadow-pcss.hlsli"
+struct Query { float2 uv; float layer; float depth; float2 texelSize; float2 depthGradient; float4 uvClamp; float2 pixel; float2 pad; };
+Texture2DArray<float> shadowMap : register(t0);
+SamplerComparisonState shadowCmp : register(s0);
+StructuredBuffer<Query> queries : register(t1);
+RWStructuredBuffer<float4> output : register(u0);
+[numthreads(64, 1, 1)] void main(uint3 id : SV_DispatchThreadID) {
+  Query q = queries[id.x];
+  ShadowFilterInput i = {q.uv, q.layer, q.depth, q.texelSize, q.uvClamp, q.depthGradient, q.pixel};
+  ShadowPcssInput p = {float2(PCSS_NEAR, PCSS_FAR), float2(PCSS_SCALE, PCSS_SCALE), 0.0, PCSS_TAPS, PCSS_MAX, 0.0};
+  output[id.x] = float4(ShadowFilterPcss(shadowMap, shadowCmp, i, p), 0, 0, 0);
+}
+)";
+
 // --- The kernels on the CPU, step by step as the HLSL defines them
 
 // ShadowFilterSetup, in float as the shader computes it.
@@ -304,6 +322,12 @@ class FilterRig {
     ShaderBytecode code = CompileHlsl(kFilterShader, "cs_5_0", "main", {{"SHADOW_FILTER", std::to_string(int(filter))}, {"SHADOW_KERNEL", std::to_string(n)}});
     std::vector<float> r;
     for (const glm::vec4& v : Dispatch(code, qs)) r.push_back(v.x);
+    return r;
+  }
+
+  std::vector<float> FilteredPcss(const std::vector<hlsl::Define>& defines, const std::vector<Query>& qs) {
+    std::vector<float> r;
+    for (const glm::vec4& v : Dispatch(CompileHlsl(kPcssShader, "cs_5_0", "main", defines), qs)) r.push_back(v.x);
     return r;
   }
 
@@ -622,6 +646,66 @@ float4 main(In p) : SV_Target {
   for (Filter filter : {kHw2x2, kBox, kGauss, kGatherCmp, kPoisson}) {
     ShaderBytecode b = CompileHlsl(src, "ps_5_0", "main", {{"SHADOW_FILTER", std::to_string(int(filter))}, {"SHADOW_KERNEL", "9"}});
     EXPECT_NO_THROW(device().CreatePixelShader(b)) << kFilterNames[filter];
+  }
+}
+
+// ShadowFilterPcss (shadow-pcss.hlsli) against its three steps on the CPU, orthographic, without
+// receiver-plane gradient: the search grid's Loads, the mean linearised blocker depth, and the box
+// of real width w (clamped to [1, max]) over texel cells, each texel weighted by its cell's
+// overlap with [s - w/2, s + w/2] per axis. The wall layer has one blocker depth (the width is
+// constant, 6.3 texels, or clamped to 4); the steps layer many, so the mean and the width vary per
+// query. Tolerance kGatherSlack, plus 1 where a search tap lies within 1e-4 of a texel boundary
+// (float rounding may then pick the other texel).
+TEST_P(ShadowFilterTest, PcssMatchesItsCpuSteps) {
+  struct Case { Layer layer; float scale, maxKernel; };
+  const float nearZ = 10, farZ = 20;
+  const int taps = 5;
+  for (const Case& c : {Case{kWall, 1.26f, 31}, Case{kWall, 1.26f, 4}, Case{kSteps, 3.0f, 31}}) {
+    const Map& m = TheMap();
+    Random r;
+    std::vector<Query> qs;
+    for (int i = 0; i < 128; ++i) {
+      Query q;
+      q.layer = float(c.layer);
+      q.uv = {r(0.1f, 0.9f), r(0.1f, 0.9f)};
+      q.depth = 0.5f;
+      qs.push_back(q);
+    }
+    std::vector<float> got = rig_->FilteredPcss({{"PCSS_NEAR", cs::Fmt(nearZ)}, {"PCSS_FAR", cs::Fmt(farZ)}, {"PCSS_SCALE", cs::Fmt(c.scale)},
+                                                 {"PCSS_TAPS", std::to_string(taps)}, {"PCSS_MAX", cs::Fmt(c.maxKernel)}}, qs);
+    std::vector<cs::Expected> want;
+    for (const Query& q : qs) {
+      const Frame f = FrameOf(q);
+      auto linear = [&](float d) { return nearZ + d * (farZ - nearZ); };
+      const float dR = linear(q.depth);
+      const float radius = std::min(0.5f * (c.scale * (dR - nearZ)), 0.5f * c.maxKernel), step = 2.0f * radius / float(taps - 1);
+      int blockers = 0;
+      double depthSum = 0, tol = kGatherSlack;
+      for (int y = 0; y < taps; ++y)
+        for (int x = 0; x < taps; ++x) {
+          glm::vec2 p = f.s - radius + step * glm::vec2(x, y) + 0.5f;
+          if (glm::any(glm::lessThan(glm::abs(p - glm::round(p)), glm::vec2(1e-4f)))) tol = 1;
+          glm::vec2 t = glm::clamp(glm::floor(p), f.lo, f.hi);
+          float stored = m.At(int(q.layer), int(t.x), int(t.y));
+          if (stored < q.depth) ++blockers, depthSum += linear(stored);
+        }
+      if (blockers == 0) {
+        want.push_back({1.0, tol});
+        continue;
+      }
+      const double w = std::clamp(c.scale * (dR - depthSum / blockers), 1.0, double(c.maxKernel));
+      auto overlap = [&](int t, int axis) { return std::max(0.0, std::min(t + 0.5, f.s[axis] + w / 2) - std::max(t - 0.5, f.s[axis] - w / 2)); };
+      double sum = 0;
+      for (int ty = int(std::floor(f.s.y - w / 2 + 0.5)); ty <= int(std::floor(f.s.y + w / 2 + 0.5)); ++ty)
+        for (int tx = int(std::floor(f.s.x - w / 2 + 0.5)); tx <= int(std::floor(f.s.x + w / 2 + 0.5)); ++tx) {
+          float texel = m.At(int(q.layer), std::clamp(tx, int(f.lo.x), int(f.hi.x)), std::clamp(ty, int(f.lo.y), int(f.hi.y)));
+          sum += overlap(tx, 0) * overlap(ty, 1) * (q.depth <= texel ? 1.0 : 0.0);
+        }
+      want.push_back({sum / (w * w), tol});
+    }
+    std::string name = std::string(c.layer == kWall ? "wall" : "steps") + " scale " + cs::Fmt(c.scale) + " max " + cs::Fmt(c.maxKernel);
+    ExpectMatches("pcss " + name, got, want, qs);
+    ExpectPartlyLit("pcss " + name, got);
   }
 }
 
