@@ -79,8 +79,8 @@ struct Query {
 };
 static_assert(sizeof(Query) == 64);
 
-const char* const kFilterShader = R"(
-#include "common/shadow-filter.hlsli"
+// The compute shaders' bindings and the start of their main(): the query as ShadowFilterInput i.
+const std::string kQueryShaderStart = R"(
 struct Query { float2 uv; float layer; float depth; float2 texelSize; float2 depthGradient; float4 uvClamp; float2 pixel; float2 pad; };
 Texture2DArray<float> shadowMap : register(t0);
 SamplerComparisonState shadowCmp : register(s0);
@@ -89,6 +89,8 @@ RWStructuredBuffer<float4> output : register(u0);
 [numthreads(64, 1, 1)] void main(uint3 id : SV_DispatchThreadID) {
   Query q = queries[id.x];
   ShadowFilterInput i = {q.uv, q.layer, q.depth, q.texelSize, q.uvClamp, q.depthGradient, q.pixel};
+)";
+const std::string kFilterShader = "#include \"common/shadow-filter.hlsli\"\n" + kQueryShaderStart + R"(
   output[id.x] = float4(ShadowFilter(shadowMap, shadowCmp, i), 0, 0, 0);
 }
 )";
@@ -117,17 +119,7 @@ struct MathCase {
 
 // ShadowFilterPcss with an orthographic ShadowPcssInput from the defines PCSS_NEAR, PCSS_FAR,
 // PCSS_SCALE, PCSS_TAPS and PCSS_MAX.
-const char* const kPcssShader = R"(
-#define SHADOW_FILTER 5
-#include "common/shadow-pcss.hlsli"
-struct Query { float2 uv; float layer; float depth; float2 texelSize; float2 depthGradient; float4 uvClamp; float2 pixel; float2 pad; };
-Texture2DArray<float> shadowMap : register(t0);
-SamplerComparisonState shadowCmp : register(s0);
-StructuredBuffer<Query> queries : register(t1);
-RWStructuredBuffer<float4> output : register(u0);
-[numthreads(64, 1, 1)] void main(uint3 id : SV_DispatchThreadID) {
-  Query q = queries[id.x];
-  ShadowFilterInput i = {q.uv, q.layer, q.depth, q.texelSize, q.uvClamp, q.depthGradient, q.pixel};
+const std::string kPcssShader = "#define SHADOW_FILTER 5\n#include \"common/shadow-pcss.hlsli\"\n" + kQueryShaderStart + R"(
   ShadowPcssInput p = {float2(PCSS_NEAR, PCSS_FAR), float2(PCSS_SCALE, PCSS_SCALE), 0.0, PCSS_TAPS, PCSS_MAX, 0.0};
   output[id.x] = float4(ShadowFilterPcss(shadowMap, shadowCmp, i, p), 0, 0, 0);
 }
