@@ -1,14 +1,17 @@
 // Lighting side of the basic technique: one shadow map fitted to the scene, sampled with the
-// hardware's 2x2 comparison filter (SampleCmpLevelZero).
+// hardware's 2x2 comparison filter (SampleCmpLevelZero), or with the PCF library's filter
+// (SHADOW_FILTER 1..4 with SHADOW_KERNEL, 5 pcss).
 #include "common/shadow-lookup.hlsli"
+#include "common/shadow-pcss.hlsli"
 
 cbuffer BasicShadow : register(b2) {
   float4x4 lightViewProj;
   float2 shadowMapSize;  // texels; for the lab's ShadowTexel
   float2 padBasicShadow;
+  ShadowPcssInput basicPcss;  // filter=pcss: orthographic, the sun's angular size
 };
 
-Texture2D<float> ShadowMap : register(t0);
+Texture2DArray<float> ShadowMap : register(t0);
 SamplerComparisonState ShadowSampler : register(s0);
 
 // Map coordinates of a world point: uv in [0, 1] (D3D: NDC +y is the top row, so v = 0.5 - 0.5 y)
@@ -24,7 +27,17 @@ bool BasicOutsideMap(float3 c) { return any(c.xy < 0.0) || any(c.xy > 1.0) || c.
 float ShadowVisibility(float3 worldPos, float3 worldNormal, float4 svPosition) {
   float3 c = BasicShadowCoord(worldPos);
   if (BasicOutsideMap(c)) return 1.0;
-  return ShadowMap.SampleCmpLevelZero(ShadowSampler, c.xy, c.z);
+#if SHADOW_FILTER == 0
+  return ShadowMap.SampleCmpLevelZero(ShadowSampler, float3(c.xy, 0), c.z);
+#else
+  // The rasterizer's depth bias is the only bias: no receiver-plane gradient.
+  ShadowFilterInput i = {c.xy, 0.0, c.z, 1.0 / shadowMapSize, float4(0, 0, 1, 1), float2(0, 0), svPosition.xy};
+#if SHADOW_FILTER == 5
+  return ShadowFilterPcss(ShadowMap, ShadowSampler, i, basicPcss);
+#else
+  return ShadowFilter(ShadowMap, ShadowSampler, i);
+#endif
+#endif
 }
 
 // One layer (0); points outside the map are lit without a lookup.

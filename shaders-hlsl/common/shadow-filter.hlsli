@@ -6,7 +6,10 @@
 //                  2 gauss     the same taps with separable binomial weights
 //                  3 gathercmp the box kernel built from GatherCmp: (N+1)^2/4 fetches instead of N^2
 //                  4 poisson   16 Poisson-disk taps of radius N/2 texels, rotated per pixel
-//   SHADOW_KERNEL  N, odd, 3..9 (ignored by hw2x2)
+//                  5 pcss      percentage-closer soft shadows: ShadowFilterPcss, not ShadowFilter
+//                              (it needs the light's size and depth range: ShadowPcssInput)
+//   SHADOW_KERNEL  N, odd, 3..15, gathercmp 3..31 (ignored by hw2x2 and pcss); kernels wider than
+//                  SHADOW_UNROLL_MAX are [loop]s, which compile in a fraction of the time (docs/techniques.md)
 // The sampler must be a comparison sampler with LESS_EQUAL (reference <= stored depth is lit),
 // MIN_MAG_LINEAR filtering; its address mode never matters because no tap leaves uvClamp.
 //
@@ -16,7 +19,7 @@
 //          (N+1)-texel footprint from floor(s) - N/2 with weights (1-f, 1, ..., 1, f) / N,
 //          f = frac(s): what gathercmp builds texel by texel.
 //   gauss: the same taps weighted C(N-1, x+N/2) C(N-1, y+N/2) / 4^(N-1): binomial, the discrete
-//          Gaussian with sigma = sqrt(N-1)/2 = 0.71, 1, 1.22, 1.41 texels for N = 3..9 (the taps'
+//          Gaussian with sigma = sqrt(N-1)/2 = 0.71, 1, 1.22, 1.41 .. 1.87 texels for N = 3..15 (the taps'
 //          bilinear interpolation adds a variance of f(1-f) <= 1/4 texel^2 per axis).
 //   poisson: 16 taps at kShadowPoissonDisk * N/2 texels, rotated by a per-pixel angle, 1/16 each.
 // Receiver-plane bias: a tap at texel-space offset o compares
@@ -35,11 +38,28 @@
 #ifndef SHADOW_KERNEL
 #define SHADOW_KERNEL 3
 #endif
-#if SHADOW_FILTER < 0 || SHADOW_FILTER > 4
-#error SHADOW_FILTER must be 0 (hw2x2), 1 (box), 2 (gauss), 3 (gathercmp) or 4 (poisson)
+#if SHADOW_FILTER < 0 || SHADOW_FILTER > 5
+#error SHADOW_FILTER must be 0 (hw2x2), 1 (box), 2 (gauss), 3 (gathercmp), 4 (poisson) or 5 (pcss)
 #endif
-#if SHADOW_FILTER != 0 && (SHADOW_KERNEL < 3 || SHADOW_KERNEL > 9 || SHADOW_KERNEL % 2 == 0)
-#error SHADOW_KERNEL must be odd, 3..9
+#if SHADOW_FILTER != 0 && SHADOW_FILTER != 5 && (SHADOW_KERNEL < 3 || SHADOW_KERNEL % 2 == 0)
+#error SHADOW_KERNEL must be odd and at least 3
+#endif
+#if SHADOW_FILTER == 3 && SHADOW_KERNEL > 31
+#error SHADOW_KERNEL must be at most 31 for gathercmp
+#endif
+#if SHADOW_FILTER != 0 && SHADOW_FILTER != 3 && SHADOW_FILTER != 5 && SHADOW_KERNEL > 15
+#error SHADOW_KERNEL must be at most 15 for box, gauss and poisson
+#endif
+
+// Unrolled, a 15x15 kernel is 225 taps of straight-line code that glslang, SPIRV-Cross and
+// llvmpipe's compiler each take seconds over; above this width the kernels run as loops.
+#ifndef SHADOW_UNROLL_MAX
+#define SHADOW_UNROLL_MAX 9
+#endif
+#if SHADOW_KERNEL > SHADOW_UNROLL_MAX
+#define SHADOW_KERNEL_LOOP [loop]
+#else
+#define SHADOW_KERNEL_LOOP [unroll]
 #endif
 
 #define SHADOW_KERNEL_HALF (SHADOW_KERNEL / 2)
@@ -79,8 +99,16 @@ static const float kShadowBinomial[3] = {1, 2, 1};
 static const float kShadowBinomial[5] = {1, 4, 6, 4, 1};
 #elif SHADOW_KERNEL == 7
 static const float kShadowBinomial[7] = {1, 6, 15, 20, 15, 6, 1};
-#else
+#elif SHADOW_KERNEL == 9
 static const float kShadowBinomial[9] = {1, 8, 28, 56, 70, 56, 28, 8, 1};
+#elif SHADOW_KERNEL == 11
+static const float kShadowBinomial[11] = {1, 10, 45, 120, 210, 252, 210, 120, 45, 10, 1};
+#elif SHADOW_KERNEL == 13
+static const float kShadowBinomial[13] = {1, 12, 66, 220, 495, 792, 924, 792, 495, 220, 66, 12, 1};
+#else
+// 15 (gathercmp 17..31 do not read it; gauss stops at 15). The largest product, 3432^2 < 2^24,
+// and the sum 4^14 = 2^28 (a power of two) are exact in float.
+static const float kShadowBinomial[15] = {1, 14, 91, 364, 1001, 2002, 3003, 3432, 3003, 2002, 1001, 364, 91, 14, 1};
 #endif
 
 // What every tap needs, computed once per lookup.
@@ -132,6 +160,21 @@ float2 ShadowFilterRotation(float2 pixel) {
   return r;
 }
 
+// One GatherCmp over the footprint texels b and b + 1 per axis, weighted w0 (at b) and w1 (at
+// b + 1) per axis. The box's clamped taps read texel clamp(t, lo, hi) for footprint texel t; gather
+// the 2x2 block at g, which holds both clamp(b) and clamp(b + 1), and move each weight onto
+// whichever of g, g + 1 its texel became. Needs uvClamp at least 2 texels wide.
+float ShadowGatherBlock(Texture2DArray<float> map, SamplerComparisonState cmp, ShadowFilterInput i, ShadowFilterFrame f, float2 b, float2 w0, float2 w1) {
+  float2 g = clamp(b, f.lo, f.hi - 1.0);
+  float2 onG = w0 * float2(clamp(b, f.lo, f.hi) == g) + w1 * float2(clamp(b + 1.0, f.lo, f.hi) == g);
+  float2 onG1 = w0 + w1 - onG;
+  // Gather's order: (g.x, g.y+1), (g.x+1, g.y+1), (g.x+1, g.y), (g.x, g.y). Sampling at the
+  // corner shared by the four centres keeps the choice of g far from any rounding boundary.
+  float4 w = float4(onG.x * onG1.y, onG1.x * onG1.y, onG1.x * onG.y, onG.x * onG.y);
+  float4 lit = map.GatherCmp(cmp, float3((g + 1.0) * i.texelSize, i.layer), ShadowFilterReference(i, f, g + 0.5));
+  return dot(lit, w);
+}
+
 #if SHADOW_FILTER == 3
 // The box kernel from GatherCmp. A gather compares one reference with its four texels, so each
 // texel meets the receiver plane at its 2x2 block's centre (at most half a texel away per axis)
@@ -154,22 +197,12 @@ float ShadowFilterGather(Texture2DArray<float> map, SamplerComparisonState cmp, 
   first -= SHADOW_KERNEL_HALF;
   float sum = 0.0;
   // N + 1 is even, so (N+1)/2 gathers per axis tile the footprint exactly.
-  [unroll] for (int gy = 0; gy <= SHADOW_KERNEL_HALF; ++gy) {
-    [unroll] for (int gx = 0; gx <= SHADOW_KERNEL_HALF; ++gx) {
+  SHADOW_KERNEL_LOOP for (int gy = 0; gy <= SHADOW_KERNEL_HALF; ++gy) {
+    SHADOW_KERNEL_LOOP for (int gx = 0; gx <= SHADOW_KERNEL_HALF; ++gx) {
       int2 a = int2(gx, gy) * 2;
       float2 b = first + float2(a);  // this 2x2 part of the footprint: texels b and b + 1
       float2 w0 = ShadowFootprintWeight(a, frac), w1 = ShadowFootprintWeight(a + 1, frac);
-      // The box's clamped taps read texel clamp(t, lo, hi) for footprint texel t; gather the 2x2
-      // block at g, which holds both clamp(b) and clamp(b + 1), and move each weight onto
-      // whichever of g, g + 1 its texel became.
-      float2 g = clamp(b, f.lo, f.hi - 1.0);
-      float2 onG = w0 * float2(clamp(b, f.lo, f.hi) == g) + w1 * float2(clamp(b + 1.0, f.lo, f.hi) == g);
-      float2 onG1 = w0 + w1 - onG;
-      // Gather's order: (g.x, g.y+1), (g.x+1, g.y+1), (g.x+1, g.y), (g.x, g.y). Sampling at the
-      // corner shared by the four centres keeps the choice of g far from any rounding boundary.
-      float4 w = float4(onG.x * onG1.y, onG1.x * onG1.y, onG1.x * onG.y, onG.x * onG.y);
-      float4 lit = map.GatherCmp(cmp, float3((g + 1.0) * i.texelSize, i.layer), ShadowFilterReference(i, f, g + 0.5));
-      sum += dot(lit, w);
+      sum += ShadowGatherBlock(map, cmp, i, f, b, w0, w1);
     }
   }
   // Weights sum to 1 only up to rounding; keep the result a visibility.
@@ -177,14 +210,16 @@ float ShadowFilterGather(Texture2DArray<float> map, SamplerComparisonState cmp, 
 }
 #endif
 
+#if SHADOW_FILTER != 5
+// pcss has no ShadowFilter (calling it is a compile error): it needs ShadowFilterPcss's inputs.
 float ShadowFilter(Texture2DArray<float> map, SamplerComparisonState cmp, ShadowFilterInput i) {
   ShadowFilterFrame f = ShadowFilterSetup(i);
 #if SHADOW_FILTER == 0
   return ShadowFilterTap(map, cmp, i, f, float2(0, 0));
 #elif SHADOW_FILTER == 1 || SHADOW_FILTER == 2
   float sum = 0.0;
-  [unroll] for (int y = -SHADOW_KERNEL_HALF; y <= SHADOW_KERNEL_HALF; ++y) {
-    [unroll] for (int x = -SHADOW_KERNEL_HALF; x <= SHADOW_KERNEL_HALF; ++x) {
+  SHADOW_KERNEL_LOOP for (int y = -SHADOW_KERNEL_HALF; y <= SHADOW_KERNEL_HALF; ++y) {
+    SHADOW_KERNEL_LOOP for (int x = -SHADOW_KERNEL_HALF; x <= SHADOW_KERNEL_HALF; ++x) {
 #if SHADOW_FILTER == 1
       sum += ShadowFilterTap(map, cmp, i, f, float2(x, y));
 #else
@@ -212,6 +247,7 @@ float ShadowFilter(Texture2DArray<float> map, SamplerComparisonState cmp, Shadow
   return sum * (1.0 / SHADOW_POISSON_TAPS);
 #endif
 }
+#endif
 
 // Receiver-plane depth bias (Isidoro, "Shadow mapping: GPU-based tips and techniques", GDC 2006).
 // Across the screen, (dz/dx, dz/dy) = J (dz/du, dz/dv) with J = [du/dx dv/dx; du/dy dv/dy];

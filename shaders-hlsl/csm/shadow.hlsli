@@ -6,12 +6,13 @@
 //
 // Defines: CSM_MOMENTS 1 selects moment filtering (techniques/moments; the MOMENT_* defines of
 // moments/moments.hlsli come with it), else SHADOW_FILTER and SHADOW_KERNEL select the comparison
-// filter of common/shadow-filter.hlsli. Selection, blending and the bias mode are uniform
-// branches on constants.
+// filter of common/shadow-filter.hlsli (5: pcss, common/shadow-pcss.hlsli). Selection, blending
+// and the bias mode are uniform branches on constants.
 #include "common/frame.hlsli"
 #include "common/shadow-lookup.hlsli"
 // Also for the moment filters: NormalOffset.
 #include "common/shadow-filter.hlsli"
+#include "common/shadow-pcss.hlsli"
 
 #ifndef CSM_MOMENTS
 #define CSM_MOMENTS 0
@@ -31,6 +32,10 @@ cbuffer CsmShadow : register(b2) {
   float4 csmCameraForward;                    // w: cascade count
   float4 csmSettings;                         // select (0 interval, 1 map), blend, bias (0 const, 1 slope, 2 normal, 3 receiver plane), normal offset (texels)
   float4 csmMapInfo;                          // 1 / texture size (xy), unused, region size in texels
+#if SHADOW_FILTER == 5 && !CSM_MOMENTS
+  // Only here: sdsm writes the members above byte for byte from the GPU and offers no pcss.
+  float4 csmPcss;                             // 2 tan(light angle / 2), search taps, max kernel, unused
+#endif
 };
 
 #if CSM_MOMENTS
@@ -164,7 +169,21 @@ float CsmFiltered(int c, float3 lv, float3 lvDdx, float3 lvDdy, float3 worldNorm
     fi.depthGradient = ReceiverPlaneDepthGradient(lvDdx * s, lvDdy * s);
   }
   fi.pixel = pixel;
+#if SHADOW_FILTER == 5
+  // Each cascade is its own orthographic map: its depth range from the depth mapping
+  // (d = z * scale + offset, z the distance along the light), its own world texel size.
+  ShadowPcssInput pi;
+  float depthScale = csmToMapScale[c].z, depthOffset = csmToMapOffset[c].z;
+  pi.depthRange = float2(depthOffset, depthOffset - 1.0) / depthScale;
+  pi.penumbraScale = csmPcss.xx / csmCascade[c].z;
+  pi.perspective = 0.0;
+  pi.searchTaps = csmPcss.y;
+  pi.maxKernel = csmPcss.z;
+  pi.padPcss = 0.0;
+  return ShadowFilterPcss(CsmMap, CsmSampler, fi, pi);
+#else
   return ShadowFilter(CsmMap, CsmSampler, fi);
+#endif
 #endif
 }
 

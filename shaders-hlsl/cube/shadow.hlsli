@@ -130,8 +130,8 @@ float CubeSlotVisibility(TextureCube<float> map, CubeSlot slot, float3 worldPos,
   T *= texel;
   float sum = 0.0;
   float weights = 0.0;
-  [unroll] for (int y = -SHADOW_KERNEL_HALF; y <= SHADOW_KERNEL_HALF; ++y) {
-    [unroll] for (int x = -SHADOW_KERNEL_HALF; x <= SHADOW_KERNEL_HALF; ++x) {
+  SHADOW_KERNEL_LOOP for (int y = -SHADOW_KERNEL_HALF; y <= SHADOW_KERNEL_HALF; ++y) {
+    SHADOW_KERNEL_LOOP for (int x = -SHADOW_KERNEL_HALF; x <= SHADOW_KERNEL_HALF; ++x) {
 #if SHADOW_FILTER == 2
       float w = kShadowBinomial[x + SHADOW_KERNEL_HALF] * kShadowBinomial[y + SHADOW_KERNEL_HALF];
 #else

@@ -1,15 +1,18 @@
 // Lighting side of the spot technique (techniques/spot/): one spot light's shadow in one
-// perspective depth map, sampled with the 2x2 hardware comparison filter. Other lights: 1.
+// perspective depth map, sampled with the 2x2 hardware comparison filter or the PCF library's
+// filter (SHADOW_FILTER 1..3 with SHADOW_KERNEL, 5 pcss). Other lights: 1.
 #include "common/shadow-lookup.hlsli"
+#include "common/shadow-pcss.hlsli"
 
 cbuffer SpotShadow : register(b2) {
   float4x4 spotViewProj;
   float2 spotMapSize;   // texels; for the lab's ShadowTexel
   uint spotLightIndex;  // the local light this map shadows
   float padSpotShadow;
+  ShadowPcssInput spotPcss;  // filter=pcss: perspective, the light's disc radius
 };
 
-Texture2D<float> SpotShadowMap : register(t0);
+Texture2DArray<float> SpotShadowMap : register(t0);
 SamplerComparisonState SpotShadowSampler : register(s0);
 
 // uv in [0, 1] (D3D: NDC +y is the top row) and depth; w <= 0 (behind the light) gives z > 1.
@@ -28,7 +31,17 @@ float LocalShadowVisibility(uint light, float3 worldPos, float3 worldNormal) {
   if (light != spotLightIndex) return 1.0;
   float3 c = SpotShadowCoord(worldPos);
   if (SpotOutsideMap(c)) return 1.0;
-  return SpotShadowMap.SampleCmpLevelZero(SpotShadowSampler, c.xy, c.z);
+#if SHADOW_FILTER == 0
+  return SpotShadowMap.SampleCmpLevelZero(SpotShadowSampler, float3(c.xy, 0), c.z);
+#else
+  // No pixel position reaches LocalShadowVisibility, hence no poisson (its rotation needs one).
+  ShadowFilterInput i = {c.xy, 0.0, c.z, 1.0 / spotMapSize, float4(0, 0, 1, 1), float2(0, 0), float2(0, 0)};
+#if SHADOW_FILTER == 5
+  return ShadowFilterPcss(SpotShadowMap, SpotShadowSampler, i, spotPcss);
+#else
+  return ShadowFilter(SpotShadowMap, SpotShadowSampler, i);
+#endif
+#endif
 }
 
 // The directional light is not this technique's.

@@ -1,9 +1,12 @@
 // The basic technique: one directional shadow map fitted to the whole scene (the naive fit),
 // rendered depth-only into R32_TYPELESS with D3D11 rasterizer depth bias, sampled with the 2x2
-// hardware comparison filter. The reference point every other technique is measured against.
+// hardware comparison filter (the default, the reference point every other technique is measured
+// against) or with the PCF library's filters, PCSS included (the sun as a disc of `light_size`
+// degrees; docs/techniques.md).
 #include <glm/ext/matrix_clip_space.hpp>
 #include <glm/ext/matrix_transform.hpp>
 
+#include "pcf-params.h"
 #include <sp/tech/technique.h>
 
 namespace sp::tech {
@@ -14,17 +17,27 @@ class BasicTechnique final : public Technique {
   std::string Name() const override { return "basic"; }
 
   std::vector<ParamSpec> Params() const override {
-    return {
+    std::vector<ParamSpec> specs = {
         {ParamSpec::Int, "resolution", "shadow map width and height in texels", "2048", 16, 16384, {}},
         {ParamSpec::Int, "depth_bias", "D3D11 DepthBias (units of the depth format)", "200", -1e7, 1e7, {}},
         {ParamSpec::Float, "slope_bias", "D3D11 SlopeScaledDepthBias", "2.0", -100, 100, {}},
         {ParamSpec::Float, "bias_clamp", "D3D11 DepthBiasClamp (0 = none)", "0", -1, 1, {}},
+        {ParamSpec::Choice, "filter", "shadow filter (common/shadow-filter.hlsli; pcss: common/shadow-pcss.hlsli)", "hw2x2", 0, 0, PcfFilterNames()},
+        PcfKernelParam("box, gauss, gathercmp, poisson"),
     };
+    for (const ParamSpec& p : PcssParamSpecs(PcssLight::Directional)) specs.push_back(p);
+    return specs;
   }
 
   void Configure(Device& device, const ParamValues& p) override {
     resolution_ = uint32_t(p.getInt("resolution"));
+    filter_ = PcfFilterIndex(p.getChoice("filter"));
+    kernel_ = std::stoi(p.getChoice("kernel"));
+    CheckPcfKernel("basic", filter_, kernel_);
+    pcss_ = PcssSettingsFrom(p);
     map_ = MakeDepthMap(device, resolution_, resolution_, "basic shadow map");
+    // The PCF library reads Texture2DArray; a one-slice array view of the same map.
+    arraySrv_ = MakeSliceArraySrv(device, map_.texture.get());
 
     RASTERIZER_DESC rd;
     rd.FrontCounterClockwise = true;  // glTF winding, as in the lit pass
@@ -41,8 +54,10 @@ class BasicTechnique final : public Technique {
 
   void RenderShadows(DeviceContext& ctx, SceneDrawer& drawer, const FrameInputs& frame) override {
     GpuTimer::Scope timed(frame.timer, ctx, "shadow");
-    lightViewProj_ = FitToScene(frame.scene->bounds, frame.light.direction);
-    Constants c{lightViewProj_, glm::vec2(float(resolution_)), glm::vec2(0.0f)};
+    OrthoFit fit = FitToScene(frame.scene->bounds, frame.light.direction);
+    lightViewProj_ = fit.viewProj;
+    Constants c{lightViewProj_, glm::vec2(float(resolution_)), glm::vec2(0.0f),
+                OrthoPcssConstants(pcss_, fit.nearZ, fit.farZ, fit.extent / float(resolution_))};
     ctx.UpdateSubresource(constants_.get(), 0, nullptr, &c, 0, 0);
 
     // The map is read by the previous frame's lit pass; unbind it before writing, as a D3D11
@@ -59,10 +74,15 @@ class BasicTechnique final : public Technique {
   }
 
   std::string LightingInclude() const override { return "basic/shadow.hlsli"; }
+  // hw2x2 and pcss ignore the kernel: one variant each.
+  std::vector<hlsl::Define> LightingDefines() const override {
+    bool sized = filter_ != 0 && filter_ != kPcssFilter;
+    return {{"SHADOW_FILTER", std::to_string(filter_)}, {"SHADOW_KERNEL", std::to_string(sized ? kernel_ : 3)}};
+  }
 
   void BindLighting(DeviceContext& ctx) override {
     ctx.PSSetConstantBuffers(2, {constants_.get()});
-    ctx.PSSetShaderResources(0, {map_.srv.get()});
+    ctx.PSSetShaderResources(0, {arraySrv_.get()});
     ctx.PSSetSamplers(0, {sampler_.get()});
   }
 
@@ -70,8 +90,13 @@ class BasicTechnique final : public Technique {
   std::vector<ShadowLayer> Layers() const override { return {{resolution_, resolution_}}; }
 
  private:
+  struct OrthoFit {
+    glm::mat4 viewProj;
+    float nearZ, farZ;  // world units along the light direction, from the view's origin
+    glm::vec2 extent;   // the frustum's width and height in world units
+  };
   // An orthographic light frustum around the scene's bounding box.
-  static glm::mat4 FitToScene(const scene::Bounds& bounds, const glm::vec3& direction) {
+  static OrthoFit FitToScene(const scene::Bounds& bounds, const glm::vec3& direction) {
     glm::vec3 dir = glm::normalize(direction);
     glm::vec3 center = bounds.center();
     float radius = glm::length(bounds.extent()) * 0.5f;
@@ -80,7 +105,7 @@ class BasicTechnique final : public Technique {
     scene::Bounds ls = bounds.transformed(view);
     // Right-handed view space looks down -z: near = -max.z, far = -min.z.
     glm::mat4 proj = glm::orthoRH_ZO(ls.min.x, ls.max.x, ls.min.y, ls.max.y, -ls.max.z, -ls.min.z);
-    return proj * view;
+    return {proj * view, -ls.max.z, -ls.min.z, glm::vec2(ls.max.x - ls.min.x, ls.max.y - ls.min.y)};
   }
 
   // cbuffer BasicShadow in shaders-hlsl/basic/shadow.hlsli.
@@ -88,11 +113,15 @@ class BasicTechnique final : public Technique {
     glm::mat4 lightViewProj;
     glm::vec2 mapSize;
     glm::vec2 pad;
+    PcssConstants pcss;
   };
-  static_assert(sizeof(Constants) == 80);
+  static_assert(sizeof(Constants) == 112);
 
   uint32_t resolution_ = 0;
+  int filter_ = 0, kernel_ = 3;
+  PcssSettings pcss_;
   DepthMap map_;
+  Ref<ShaderResourceView> arraySrv_;
   Ref<RasterizerState> rasterizer_;
   Ref<SamplerState> sampler_;
   Ref<Buffer> constants_;

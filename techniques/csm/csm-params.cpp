@@ -5,12 +5,13 @@
 #include <stdexcept>
 
 #include "csm-technique.h"
+#include "pcf-params.h"
 
 namespace sp::tech::csm {
 
 std::vector<ParamSpec> CsmParams() {
   using P = ParamSpec;
-  std::vector<std::string> filters = {"hw2x2", "box", "gauss", "gathercmp", "poisson"};
+  std::vector<std::string> filters = PcfFilterNames();
   for (const std::string& m : MomentFilterNames()) filters.push_back(m);
   std::vector<ParamSpec> specs = {
       {P::Int, "cascades", "number of cascades (1 = one map focused on the view)", "4", 1, 8, {}},
@@ -25,7 +26,7 @@ std::vector<ParamSpec> CsmParams() {
       {P::Choice, "focus", "receivers: fit to the slice within the scene and its casters; scene: slice and whole scene depth", "receivers", 0, 0, {"scene", "receivers"}},
       {P::Choice, "filter", "shadow filter: PCF (common/shadow-filter.hlsli) or moments (moments/moments.hlsli; storage=array only)", "hw2x2", 0,
        0, filters},
-      {P::Choice, "kernel", "filter kernel width in texels (box, gauss, gathercmp, poisson)", "3", 0, 0, {"3", "5", "7", "9"}},
+      PcfKernelParam("box, gauss, gathercmp, poisson"),
       {P::Choice, "bias",
        "const: DepthBias; slope: + SlopeScaledDepthBias; normal: normal offset + DepthBias; receiver-plane: depth gradient + DepthBias "
        "(moment filters: no depth bias; bias=normal applies its normal offset)",
@@ -35,6 +36,7 @@ std::vector<ParamSpec> CsmParams() {
       {P::Float, "normal_offset", "bias=normal: offset along the normal in texels of the cascade", "1.0", 0, 16, {}},
       {P::Int, "resolution", "width and height of each cascade's region in texels", "1024", 16, 8192, {}},
   };
+  for (const ParamSpec& p : PcssParamSpecs(PcssLight::Directional)) specs.push_back(p);
   // msaa, blur, bleed, exponents, precision: used by the moment filters only.
   for (ParamSpec m : MomentParamSpecs()) {
     m.help += " (moment filters only)";
@@ -71,10 +73,10 @@ CsmSettings SettingsFrom(const ParamValues& p, const std::string& technique) {
   s.select = p.getChoice("select") == "map" ? Select::Map : Select::Interval;
   s.storage = p.getChoice("storage") == "atlas" ? Storage::Atlas : Storage::Array;
   const std::string& filter = p.getChoice("filter");
-  const std::string filters[] = {"hw2x2", "box", "gauss", "gathercmp", "poisson"};
-  for (int i = 0; i < 5; ++i)
-    if (filter == filters[i]) s.filter = i;
+  s.filter = std::max(PcfFilterIndex(filter), 0);
+  s.pcss = PcssSettingsFrom(p);
   s.kernel = p.getInt("kernel");
+  CheckPcfKernel("csm", s.filter, s.kernel);
   s.moments = IsMomentFilter(filter);
   s.anisotropy = std::stoi(p.getChoice("anisotropy"));
   {
@@ -101,7 +103,8 @@ CsmSettings SettingsFrom(const ParamValues& p, const std::string& technique) {
   // filter, and the bilinear moment lookup at mip 0, read one texel beyond their centre; a k-wide
   // kernel k/2 plus that one), and the normal offset, which moves the lookup away from the point
   // the cascade was chosen for.
-  uint32_t reach = s.filter == 0 || s.moments ? 1u : uint32_t(s.kernel / 2 + 1);
+  // pcss: its box reaches half the widest kernel, rounded up, plus the texel it ends in.
+  uint32_t reach = s.filter == 0 || s.moments ? 1u : s.filter == kPcssFilter ? uint32_t((s.pcss.maxKernel + 1) / 2 + 1) : uint32_t(s.kernel / 2 + 1);
   if (s.bias == Bias::Normal) reach += uint32_t(std::ceil(s.normalOffset));
   f.padTexels = reach;
   if (f.resolution < 8 * f.padTexels)

@@ -18,8 +18,9 @@ struct Constants {
   glm::vec4 cameraForward;   // w: cascade count
   glm::vec4 settings;        // select, blend, bias mode, normal offset (texels)
   glm::vec4 mapInfo;         // 1 / texture width, 1 / texture height, unused, region texels
+  glm::vec4 pcss;            // filter=pcss: 2 tan(angle / 2), search taps, max kernel, unused
 };
-static_assert(sizeof(Constants) == 624);
+static_assert(sizeof(Constants) == 640);
 
 }  // namespace
 
@@ -104,7 +105,7 @@ std::vector<hlsl::Define> CsmTechnique::Defines(const CsmSettings& s) {
     d.push_back({"CSM_MOMENTS", "1"});
     return d;
   }
-  int kernel = s.filter == 0 ? 3 : s.kernel;
+  int kernel = s.filter == 0 || s.filter == kPcssFilter ? 3 : s.kernel;
   return {{"SHADOW_FILTER", std::to_string(s.filter)}, {"SHADOW_KERNEL", std::to_string(kernel)}};
 }
 
@@ -135,6 +136,8 @@ void CsmTechnique::WriteConstants(DeviceContext& ctx, const FrameInputs& frame) 
   k.cameraForward = glm::vec4(frame.camera.forward(), float(fit_.cascades.size()));
   k.settings = glm::vec4(settings_.select == Select::Map ? 1.0f : 0.0f, settings_.fit.blend, float(int(settings_.bias)), settings_.normalOffset);
   k.mapInfo = glm::vec4(1.0f / w, 1.0f / h, 0.0f, n);
+  const PcssSettings& p = settings_.pcss;
+  k.pcss = glm::vec4(2.0f * std::tan(0.5f * glm::radians(p.lightSize)), float(p.searchTaps), float(p.maxKernel), 0.0f);
   ctx.UpdateSubresource(constants_.get(), 0, nullptr, &k, 0, 0);
 }
 

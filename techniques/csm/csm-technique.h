@@ -30,6 +30,7 @@
 
 #include "cascade-fit.h"
 #include "moments/moment-maps.h"
+#include "pcf-params.h"
 #include <sp/tech/technique.h>
 
 namespace sp::tech::csm {
@@ -43,8 +44,9 @@ struct CsmSettings {
   FitSettings fit;
   Select select = Select::Interval;
   Storage storage = Storage::Array;
-  int filter = 0;  // SHADOW_FILTER: 0 hw2x2, 1 box, 2 gauss, 3 gathercmp, 4 poisson (unused with moments)
+  int filter = 0;  // SHADOW_FILTER: 0 hw2x2, 1 box, 2 gauss, 3 gathercmp, 4 poisson, 5 pcss (unused with moments)
   int kernel = 3;
+  PcssSettings pcss;  // filter=pcss: the sun's angular size, search taps, widest kernel
   bool moments = false;  // a moment filter; `moment` holds its options
   MomentOptions moment;
   int anisotropy = 1;    // of the moment lookups' sampler; 1 = trilinear

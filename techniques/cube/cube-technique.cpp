@@ -23,6 +23,7 @@
 #include "cube/cube-culling.h"
 #include "cube/cube-faces.h"
 #include "local-lights.h"
+#include "pcf-params.h"
 #include <sp/tech/technique.h>
 
 namespace sp::tech {
@@ -47,7 +48,7 @@ class CubeTechnique final : public Technique {
         {ParamSpec::Int, "cull_faces", "1: skip the faces whose frustum (widened by the filter's reach) meets neither the camera's nor a visible receiver", "1", 0, 1, {}},
         {ParamSpec::Float, "radial_slope_bias", "storage=radial: bias in texel footprints times tan(angle to the light), at most 10", "1.5", 0, 100, {}},
         {ParamSpec::Choice, "filter", "comparison filter: the hardware's seamless 2x2, or box/gauss kernels whose taps cross face edges", "hw2x2", 0, 0, {"hw2x2", "box", "gauss"}},
-        {ParamSpec::Choice, "kernel", "filter kernel width in texels (box, gauss)", "3", 0, 0, {"3", "5", "7", "9"}},
+        PcfKernelParam("box, gauss"),
         {ParamSpec::Choice, "lights", "one: the point light `light`; all: up to max_lights point lights, those lighting visible receivers, largest on screen first", "one", 0, 0, {"one", "all"}},
         {ParamSpec::Int, "max_lights", "lights=all: most point lights shadowed per frame (the rest stay unshadowed)", "8", 1, kMaxCubeSlots, {}},
         {ParamSpec::Choice, "resolution_from", "fixed: every cube at `resolution`; screen: each light's from the screen size of its range sphere, between min_resolution and resolution", "fixed", 0, 0, {"fixed", "screen"}},
@@ -69,6 +70,7 @@ class CubeTechnique final : public Technique {
     const std::string& filter = p.getChoice("filter");
     filter_ = filter == "hw2x2" ? 0 : filter == "box" ? 1 : 2;
     kernel_ = std::stoi(p.getChoice("kernel"));
+    CheckPcfKernel("cube", filter_, kernel_);
     allLights_ = p.getChoice("lights") == "all";
     slotCount_ = allLights_ ? uint32_t(p.getInt("max_lights")) : 1;
     fromScreen_ = p.getChoice("resolution_from") == "screen";

@@ -48,6 +48,8 @@ SdsmSettings SdsmSettingsFrom(const ParamValues& p) {
   for (const char* name : kSharedCsmParams)
     if (p.all().count(name)) shared[name] = p.all().at(name);
   s.csm = csm::SettingsFrom(ParamValues::Parse("sdsm", csm::CsmParams(), shared), "sdsm");
+  // The partitions' constants are written on the GPU (fit.hlsl) without pcss's.
+  if (s.csm.filter == kPcssFilter) throw std::invalid_argument("sdsm: filter=pcss is not offered (use basic or csm)");
   s.partition = ParsePartitionScheme(p.getChoice("partition"));
   s.tight = p.getInt("tight") != 0;
   const std::string& cull = p.getChoice("cull");

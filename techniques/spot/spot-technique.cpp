@@ -1,13 +1,15 @@
 // The spot technique: one spot light's shadow in one perspective depth map whose frustum holds the
 // light's cone (field of view twice the outer cone angle, near to range), rendered depth-only with
 // D3D11 rasterizer depth bias and read with SampleCmpLevelZero (2x2 hardware PCF), as basic does
-// for the directional light. Casters outside the frustum are culled. The directional light and
-// the other local lights are unshadowed.
+// for the directional light, or with the PCF library's filters, PCSS included (the light as a disc
+// of radius `light_size`). Casters outside the frustum are culled. The directional light and the
+// other local lights are unshadowed.
 #include <glm/ext/matrix_clip_space.hpp>
 #include <glm/ext/matrix_transform.hpp>
 #include <stdexcept>
 
 #include "cube/cube-culling.h"
+#include "pcf-params.h"
 #include <sp/tech/technique.h>
 
 namespace sp::tech {
@@ -21,20 +23,31 @@ class SpotTechnique final : public Technique {
   std::string Name() const override { return "spot"; }
 
   std::vector<ParamSpec> Params() const override {
-    return {
+    std::vector<ParamSpec> specs = {
         {ParamSpec::Int, "light", "the spot light shadowed (index into the scene's spot lights)", "0", 0, kMaxLocalLights - 1, {}},
         {ParamSpec::Int, "resolution", "shadow map width and height in texels", "1024", 16, 16384, {}},
         {ParamSpec::Float, "near", "near plane in world units (casters closer to the light are not drawn)", "0.05", 1e-4, 1e3, {}},
         {ParamSpec::Int, "depth_bias", "D3D11 DepthBias (units of the depth format)", "200", -1e7, 1e7, {}},
         {ParamSpec::Float, "slope_bias", "D3D11 SlopeScaledDepthBias", "2.0", -100, 100, {}},
+        // No poisson: its per-pixel rotation needs the pixel, which local-light lookups lack.
+        {ParamSpec::Choice, "filter", "shadow filter (common/shadow-filter.hlsli; pcss: common/shadow-pcss.hlsli)", "hw2x2", 0, 0,
+         {"hw2x2", "box", "gauss", "gathercmp", "pcss"}},
+        PcfKernelParam("box, gauss, gathercmp"),
     };
+    for (const ParamSpec& p : PcssParamSpecs(PcssLight::Local)) specs.push_back(p);
+    return specs;
   }
 
   void Configure(Device& device, const ParamValues& p) override {
     light_ = uint32_t(p.getInt("light"));
     resolution_ = uint32_t(p.getInt("resolution"));
     near_ = p.getFloat("near");
+    filter_ = PcfFilterIndex(p.getChoice("filter"));
+    kernel_ = std::stoi(p.getChoice("kernel"));
+    CheckPcfKernel("spot", filter_, kernel_);
+    pcss_ = PcssSettingsFrom(p);
     map_ = MakeDepthMap(device, resolution_, resolution_, "spot shadow map");
+    arraySrv_ = MakeSliceArraySrv(device, map_.texture.get());
     RASTERIZER_DESC rd;
     rd.FrontCounterClockwise = true;  // glTF winding, as in the lit pass
     rd.DepthBias = p.getInt("depth_bias");
@@ -65,7 +78,8 @@ class SpotTechnique final : public Technique {
     // A square frustum whose inscribed cone is the outer cone.
     glm::mat4 proj = glm::perspectiveRH_ZO(2.0f * outer, 1.0f, near_, l.range);
     viewProj_ = proj * view;
-    Constants c{viewProj_, glm::vec2(float(resolution_)), index, 0.0f};
+    Constants c{viewProj_, glm::vec2(float(resolution_)), index, 0.0f,
+                PerspectivePcssConstants(pcss_, near_, l.range, 2.0f * outer, float(resolution_))};
     ctx.UpdateSubresource(constants_.get(), 0, nullptr, &c, 0, 0);
 
     ShaderResourceView* none = nullptr;
@@ -81,10 +95,14 @@ class SpotTechnique final : public Technique {
   }
 
   std::string LightingInclude() const override { return "spot/shadow.hlsli"; }
+  std::vector<hlsl::Define> LightingDefines() const override {
+    bool sized = filter_ != 0 && filter_ != kPcssFilter;
+    return {{"SHADOW_FILTER", std::to_string(filter_)}, {"SHADOW_KERNEL", std::to_string(sized ? kernel_ : 3)}};
+  }
 
   void BindLighting(DeviceContext& ctx) override {
     ctx.PSSetConstantBuffers(2, {constants_.get()});
-    ctx.PSSetShaderResources(0, {map_.srv.get()});
+    ctx.PSSetShaderResources(0, {arraySrv_.get()});
     ctx.PSSetSamplers(0, {sampler_.get()});
   }
 
@@ -99,12 +117,16 @@ class SpotTechnique final : public Technique {
     glm::vec2 mapSize;
     uint32_t lightIndex;
     float pad;
+    PcssConstants pcss;
   };
-  static_assert(sizeof(Constants) == 80);
+  static_assert(sizeof(Constants) == 112);
 
   uint32_t light_ = 0, resolution_ = 0;
   float near_ = 0.05f;
+  int filter_ = 0, kernel_ = 3;
+  PcssSettings pcss_;
   DepthMap map_;
+  Ref<ShaderResourceView> arraySrv_;
   Ref<RasterizerState> rasterizer_;
   Ref<SamplerState> sampler_;
   Ref<Buffer> constants_;

@@ -31,6 +31,8 @@
 // which is the seam error the guard bands remove.
 #include <algorithm>
 #include <stdexcept>
+
+#include "pcf-params.h"
 #include <string>
 
 #include "cube/cube-culling.h"
@@ -55,7 +57,7 @@ class VsdctTechnique final : public Technique {
         {ParamSpec::Int, "depth_bias", "D3D11 DepthBias (units of the depth format)", "200", -1e7, 1e7, {}},
         {ParamSpec::Float, "slope_bias", "D3D11 SlopeScaledDepthBias", "2.0", -100, 100, {}},
         {ParamSpec::Choice, "filter", "shadow filter (common/shadow-filter.hlsli)", "hw2x2", 0, 0, {"hw2x2", "box", "gauss", "gathercmp", "poisson"}},
-        {ParamSpec::Choice, "kernel", "filter kernel width in texels (box, gauss, gathercmp, poisson)", "3", 0, 0, {"3", "5", "7", "9"}},
+        PcfKernelParam("box, gauss, gathercmp, poisson"),
         {ParamSpec::Int, "guard", "guard band around each tile in texels, at least the filter's reach (hw2x2: 1, others: kernel/2 + 1); 0: clamp taps into the face instead",
          "5", 0, 64, {}},
         {ParamSpec::Int, "receiver_plane", "1: each tap compares the receiver's plane at the tap (exact, from the normal) and a texel's slope less, so wide kernels have no acne; 0: the centre's depth for every tap",
@@ -82,6 +84,7 @@ class VsdctTechnique final : public Technique {
     for (int i = 0; i < 5; ++i)
       if (p.getChoice("filter") == kFilters[i]) filter_ = i;
     kernel_ = p.getInt("kernel");
+    CheckPcfKernel("vsdct", filter_, kernel_);
     receiverPlane_ = p.getInt("receiver_plane") != 0;
     // Texels a lookup reads beyond its centre's texel: the 2x2 tap one, an N-wide kernel N/2 more
     // (gathercmp's footprint and the Poisson disk's radius with its bilinear taps included).

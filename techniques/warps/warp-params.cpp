@@ -2,6 +2,7 @@
 // depth mode and bias) and each warp's own knob, with WarpParams' defaults.
 #include <cstdio>
 
+#include "pcf-params.h"
 #include "warp-technique.h"
 
 namespace sp::tech::warps {
@@ -47,7 +48,7 @@ std::vector<ParamSpec> WarpTechniqueParams(Warp warp) {
       {P::Float, "linear_slope_bias", "depth=linear: slope-scaled bias, times the linear depth's largest change per map texel (D3D11's slope term, applied in the depth shader)",
        "1.0", -100, 100, {}},
       {P::Choice, "filter", "comparison filter (common/shadow-filter.hlsli)", "hw2x2", 0, 0, {"hw2x2", "box", "gauss", "gathercmp", "poisson"}},
-      {P::Choice, "kernel", "filter kernel width in texels (box, gauss, gathercmp, poisson)", "3", 0, 0, {"3", "5", "7", "9"}},
+      PcfKernelParam("box, gauss, gathercmp, poisson"),
       {P::Int, "receiver_plane", "1: receiver-plane depth bias per filter tap, from the derivatives of the warped map coordinates", "0", 0, 1, {}},
   };
   switch (warp) {
@@ -84,6 +85,7 @@ WarpSettings WarpSettingsFrom(Warp warp, const ParamValues& p) {
   for (int i = 0; i < 5; ++i)
     if (filter == filters[i]) s.filter = i;
   s.kernel = std::stoi(p.getChoice("kernel"));
+  CheckPcfKernel("warps", s.filter, s.kernel);
   s.receiverPlane = p.getInt("receiver_plane") == 1;
   if (warp == Warp::Psm) s.params.psmSlideBack = p.getFloat("slide_back");
   if (warp == Warp::Lispsm) s.params.lispsmScale = p.getFloat("n_scale");

@@ -125,7 +125,7 @@ TEST(CsmSplits, BadManualListsThrowNamingTheParameter) {
   }
   EXPECT_THROW(settings({{"cascades", "9"}}), std::invalid_argument);
   EXPECT_THROW(settings({{"blend", "0.6"}}), std::invalid_argument);
-  EXPECT_THROW(settings({{"filter", "pcss"}}), std::invalid_argument);
+  EXPECT_THROW(settings({{"filter", "pcf"}}), std::invalid_argument);
 }
 
 TEST(CsmSplits, FarIsClippedToTheScene) {

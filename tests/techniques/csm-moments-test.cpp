@@ -309,7 +309,7 @@ TEST(CsmMoments, ParametersAreDeclaredValidatedAndNamedInErrors) {
       {{{"filter", "vsm"}, {"storage", "atlas"}}, "filter=vsm needs storage=array"},
       // Ignored by comparison filters, but a bad value is still an error.
       {{{"filter", "hw2x2"}, {"blur", "abc"}}, "blur=abc is not valid"},
-      {{{"filter", "nosuch"}}, "hw2x2|box|gauss|gathercmp|poisson|vsm|esm|evsm2|evsm4|msm"},
+      {{{"filter", "nosuch"}}, "hw2x2|box|gauss|gathercmp|poisson|pcss|vsm|esm|evsm2|evsm4|msm"},
   };
   for (const auto& [p, want] : bad) {
     std::string e = ErrorOf(p);

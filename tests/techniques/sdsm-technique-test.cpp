@@ -256,7 +256,7 @@ TEST(SdsmTechniqueParams, BadValuesListTheValidOnes) {
   EXPECT_NE(message({{"quantize", "yes"}}).find("quantize takes an integer in [0, 1]"), std::string::npos);
   EXPECT_NE(message({{"dilation", "-1"}}).find("dilation takes a number in [0, 1000000]"), std::string::npos);
   EXPECT_NE(message({{"cascades", "9"}}).find("cascades takes an integer in [1, 8]"), std::string::npos);
-  EXPECT_NE(message({{"filter", "pcf"}}).find("filter takes hw2x2|box|gauss|gathercmp|poisson|vsm|"), std::string::npos);
+  EXPECT_NE(message({{"filter", "pcf"}}).find("filter takes hw2x2|box|gauss|gathercmp|poisson|pcss|vsm|"), std::string::npos);
   EXPECT_NE(message({{"split", "log"}}).find("(valid: partition, tight, cull, latency, quantize, dilation, cascades, resolution,"), std::string::npos);
   std::string small = message({{"resolution", "16"}, {"filter", "poisson"}, {"kernel", "9"}});
   EXPECT_NE(small.find("technique 'sdsm': resolution=16"), std::string::npos) << small;

@@ -79,8 +79,8 @@ struct Query {
 };
 static_assert(sizeof(Query) == 64);
 
-const char* const kFilterShader = R"(
-#include "common/shadow-filter.hlsli"
+// The compute shaders' bindings and the start of their main(): the query as ShadowFilterInput i.
+const std::string kQueryShaderStart = R"(
 struct Query { float2 uv; float layer; float depth; float2 texelSize; float2 depthGradient; float4 uvClamp; float2 pixel; float2 pad; };
 Texture2DArray<float> shadowMap : register(t0);
 SamplerComparisonState shadowCmp : register(s0);
@@ -89,6 +89,8 @@ RWStructuredBuffer<float4> output : register(u0);
 [numthreads(64, 1, 1)] void main(uint3 id : SV_DispatchThreadID) {
   Query q = queries[id.x];
   ShadowFilterInput i = {q.uv, q.layer, q.depth, q.texelSize, q.uvClamp, q.depthGradient, q.pixel};
+)";
+const std::string kFilterShader = "#include \"common/shadow-filter.hlsli\"\n" + kQueryShaderStart + R"(
   output[id.x] = float4(ShadowFilter(shadowMap, shadowCmp, i), 0, 0, 0);
 }
 )";
@@ -114,6 +116,14 @@ RWStructuredBuffer<float4> output : register(u0);
 struct MathCase {
   glm::vec4 a{0.0f}, b{0.0f}, mode{0.0f};  // mode.x as above
 };
+
+// ShadowFilterPcss with an orthographic ShadowPcssInput from the defines PCSS_NEAR, PCSS_FAR,
+// PCSS_SCALE, PCSS_TAPS and PCSS_MAX.
+const std::string kPcssShader = "#define SHADOW_FILTER 5\n#include \"common/shadow-pcss.hlsli\"\n" + kQueryShaderStart + R"(
+  ShadowPcssInput p = {float2(PCSS_NEAR, PCSS_FAR), float2(PCSS_SCALE, PCSS_SCALE), 0.0, PCSS_TAPS, PCSS_MAX, 0.0};
+  output[id.x] = float4(ShadowFilterPcss(shadowMap, shadowCmp, i, p), 0, 0, 0);
+}
+)";
 
 // --- The kernels on the CPU, step by step as the HLSL defines them
 
@@ -149,15 +159,21 @@ glm::vec2 Rotation(glm::vec2 pixel) {
 }
 
 // The taps of the SampleCmp-based filters; `disk` is the Poisson table (read from the shader).
+// C(n, k), exact in double for the widths used (at most C(14, 7) = 3432).
+double Binomial(int n, int k) {
+  double c = 1;
+  for (int i = 1; i <= k; ++i) c = c * (n - k + i) / i;
+  return c;
+}
+
 std::vector<Tap> Taps(Filter filter, int n, const Query& q, const std::vector<glm::vec2>& disk) {
-  static const double kBinomial[4][9] = {{1, 2, 1}, {1, 4, 6, 4, 1}, {1, 6, 15, 20, 15, 6, 1}, {1, 8, 28, 56, 70, 56, 28, 8, 1}};
   std::vector<Tap> taps;
   const int h = n / 2;
   if (filter == kHw2x2) taps.push_back({{0, 0}, 1.0});
   if (filter == kBox || filter == kGauss)
     for (int y = -h; y <= h; ++y)
       for (int x = -h; x <= h; ++x)
-        taps.push_back({{float(x), float(y)}, filter == kBox ? 1.0 / (n * n) : kBinomial[h - 1][x + h] * kBinomial[h - 1][y + h] / std::pow(4.0, n - 1)});
+        taps.push_back({{float(x), float(y)}, filter == kBox ? 1.0 / (n * n) : Binomial(n - 1, x + h) * Binomial(n - 1, y + h) / std::pow(4.0, n - 1)});
   if (filter == kPoisson) {
     glm::vec2 r = Rotation(q.pixel);
     for (glm::vec2 p : disk) {
@@ -301,6 +317,12 @@ class FilterRig {
     return r;
   }
 
+  std::vector<float> FilteredPcss(const std::vector<hlsl::Define>& defines, const std::vector<Query>& qs) {
+    std::vector<float> r;
+    for (const glm::vec4& v : Dispatch(CompileHlsl(kPcssShader, "cs_5_0", "main", defines), qs)) r.push_back(v.x);
+    return r;
+  }
+
   std::vector<glm::vec4> Math(const std::vector<MathCase>& cases) { return Dispatch(CompileHlsl(kMathShader, "cs_5_0", "main"), cases); }
 
   std::vector<glm::vec2> PoissonDisk() {
@@ -419,6 +441,20 @@ TEST_P(ShadowFilterTest, GatherCmpBuildsTheBoxKernel) {
     conformance::Result r = worst.Finish("abs");
     EXPECT_EQ(r.status, conformance::Status::Pass) << n << "x" << n << ": " << r.detail;
     EXPECT_GT(compared, int(qs.size() * 3 / 4)) << n << "x" << n;
+  }
+}
+
+// The wide kernels (loops, not unrolled: SHADOW_UNROLL_MAX) against the same CPU kernels: box,
+// gauss and poisson up to 15, gathercmp up to 31 (wider than the 32-texel map's half: clamping
+// into uvClamp is exercised on every query). Gauss 15's weights are integers up to 3432^2 < 2^24
+// over 4^14: exact in float, so its tolerance is the taps' alone.
+TEST_P(ShadowFilterTest, WideKernelsMatchTheirCpuKernels) {
+  std::vector<Query> qs = GeneralQueries();
+  const std::pair<Filter, int> cases[] = {{kBox, 11}, {kBox, 15}, {kGauss, 13}, {kGauss, 15}, {kPoisson, 15}, {kGatherCmp, 15}, {kGatherCmp, 31}};
+  for (auto [filter, n] : cases) {
+    std::vector<float> got = rig_->Filtered(filter, n, qs);
+    ExpectMatchesCpu(filter, n, qs, got);
+    ExpectPartlyLit(std::string(kFilterNames[filter]) + " " + std::to_string(n), got);
   }
 }
 
@@ -602,6 +638,66 @@ float4 main(In p) : SV_Target {
   for (Filter filter : {kHw2x2, kBox, kGauss, kGatherCmp, kPoisson}) {
     ShaderBytecode b = CompileHlsl(src, "ps_5_0", "main", {{"SHADOW_FILTER", std::to_string(int(filter))}, {"SHADOW_KERNEL", "9"}});
     EXPECT_NO_THROW(device().CreatePixelShader(b)) << kFilterNames[filter];
+  }
+}
+
+// ShadowFilterPcss (shadow-pcss.hlsli) against its three steps on the CPU, orthographic, without
+// receiver-plane gradient: the search grid's Loads, the mean linearised blocker depth, and the box
+// of real width w (clamped to [1, max]) over texel cells, each texel weighted by its cell's
+// overlap with [s - w/2, s + w/2] per axis. The wall layer has one blocker depth (the width is
+// constant, 6.3 texels, or clamped to 4); the steps layer many, so the mean and the width vary per
+// query. Tolerance kGatherSlack, plus 1 where a search tap lies within 1e-4 of a texel boundary
+// (float rounding may then pick the other texel).
+TEST_P(ShadowFilterTest, PcssMatchesItsCpuSteps) {
+  struct Case { Layer layer; float scale, maxKernel; };
+  const float nearZ = 10, farZ = 20;
+  const int taps = 5;
+  for (const Case& c : {Case{kWall, 1.26f, 31}, Case{kWall, 1.26f, 4}, Case{kSteps, 3.0f, 31}}) {
+    const Map& m = TheMap();
+    Random r;
+    std::vector<Query> qs;
+    for (int i = 0; i < 128; ++i) {
+      Query q;
+      q.layer = float(c.layer);
+      q.uv = {r(0.1f, 0.9f), r(0.1f, 0.9f)};
+      q.depth = 0.5f;
+      qs.push_back(q);
+    }
+    std::vector<float> got = rig_->FilteredPcss({{"PCSS_NEAR", cs::Fmt(nearZ)}, {"PCSS_FAR", cs::Fmt(farZ)}, {"PCSS_SCALE", cs::Fmt(c.scale)},
+                                                 {"PCSS_TAPS", std::to_string(taps)}, {"PCSS_MAX", cs::Fmt(c.maxKernel)}}, qs);
+    std::vector<cs::Expected> want;
+    for (const Query& q : qs) {
+      const Frame f = FrameOf(q);
+      auto linear = [&](float d) { return nearZ + d * (farZ - nearZ); };
+      const float dR = linear(q.depth);
+      const float radius = std::min(0.5f * (c.scale * (dR - nearZ)), 0.5f * c.maxKernel), step = 2.0f * radius / float(taps - 1);
+      int blockers = 0;
+      double depthSum = 0, tol = kGatherSlack;
+      for (int y = 0; y < taps; ++y)
+        for (int x = 0; x < taps; ++x) {
+          glm::vec2 p = f.s - radius + step * glm::vec2(x, y) + 0.5f;
+          if (glm::any(glm::lessThan(glm::abs(p - glm::round(p)), glm::vec2(1e-4f)))) tol = 1;
+          glm::vec2 t = glm::clamp(glm::floor(p), f.lo, f.hi);
+          float stored = m.At(int(q.layer), int(t.x), int(t.y));
+          if (stored < q.depth) ++blockers, depthSum += linear(stored);
+        }
+      if (blockers == 0) {
+        want.push_back({1.0, tol});
+        continue;
+      }
+      const double w = std::clamp(c.scale * (dR - depthSum / blockers), 1.0, double(c.maxKernel));
+      auto overlap = [&](int t, int axis) { return std::max(0.0, std::min(t + 0.5, f.s[axis] + w / 2) - std::max(t - 0.5, f.s[axis] - w / 2)); };
+      double sum = 0;
+      for (int ty = int(std::floor(f.s.y - w / 2 + 0.5)); ty <= int(std::floor(f.s.y + w / 2 + 0.5)); ++ty)
+        for (int tx = int(std::floor(f.s.x - w / 2 + 0.5)); tx <= int(std::floor(f.s.x + w / 2 + 0.5)); ++tx) {
+          float texel = m.At(int(q.layer), std::clamp(tx, int(f.lo.x), int(f.hi.x)), std::clamp(ty, int(f.lo.y), int(f.hi.y)));
+          sum += overlap(tx, 0) * overlap(ty, 1) * (q.depth <= texel ? 1.0 : 0.0);
+        }
+      want.push_back({sum / (w * w), tol});
+    }
+    std::string name = std::string(c.layer == kWall ? "wall" : "steps") + " scale " + cs::Fmt(c.scale) + " max " + cs::Fmt(c.maxKernel);
+    ExpectMatches("pcss " + name, got, want, qs);
+    ExpectPartlyLit("pcss " + name, got);
   }
 }
 

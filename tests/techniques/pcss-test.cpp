@@ -1,0 +1,238 @@
+// PCSS (filter=pcss, shaders-hlsl/common/shadow-pcss.hlsli) in basic and csm (the sun,
+// orthographic maps) and spot (perspective map): a thin plank at a known height over a floor, its straight edge
+// above x = 0, the camera under the plank looking down. Across the edge the lab's visibility must
+// ramp from 0 to 1 over the penumbra the light's size gives by geometry (computed here on the
+// CPU), centred on the edge's shadow; 1 past it, 0 in the umbra; twice the light, twice the ramp.
+//
+// The ramp's width: PCSS filters with a box of the penumbra's width w over texel-sized cells, and
+// the map holds the edge as a step, so visibility is exactly linear over w: the 10 % and 90 %
+// crossings lie 0.8 w apart and w = (x90 - x10) / 0.8. Tolerance 2 %, from: the plank is 0.02
+// thick and the map holds only its top, so PCSS uses h = 2.02 where the geometric penumbra runs
+// from the bottom edge's umbra boundary to the top edge's lit one (h between 2.0 and 2.02: 0.5 %
+// sun, 1 % spot against the mid-height value used here); the depth bias moves the blocker depth by
+// a few 1e-5 of the range; the crossings are interpolated linearly between pixels of an exactly
+// linear ramp, except where a crossing falls in the pixel where the ramp meets 0 or 1 (never:
+// 10 % and 90 % lie several pixels inside). No Poisson noise and no kernel quantisation (the box
+// takes any real width). Position of the ramp's centre: within a texel plus a pixel of x = 0
+// (the edge snaps to a texel boundary in the map).
+#include <cstdio>
+#include <glm/ext/matrix_transform.hpp>
+
+#include "backend-test.h"
+#include "cross-backend.h"
+#include <sp/tech/renderer.h>
+
+namespace sp::test {
+namespace {
+
+constexpr float kPlankBottom = 2.0f, kPlankTop = 2.02f, kPlankHeight = 0.5f * (kPlankBottom + kPlankTop);
+constexpr float kSpotHeight = 4.0f, kSpotOuterDegrees = 30.0f;
+constexpr uint32_t kSize = 128, kResolution = 512;
+
+// Floor [-3, 3]^2 at y = 0; plank x in [-3, 0], z in [-2.5, 2.5], y in [2, 2.02]. Camera at
+// `cameraHeight`, under the plank, looking straight down, image x = world x.
+scene::Scene PlankScene(bool spot, float cameraHeight = 1.0f) {
+  scene::Scene s;
+  s.name = spot ? "pcss-plank-spot" : "pcss-plank";
+  uint32_t plane = s.addMesh(scene::MakePlane(1));
+  uint32_t box = s.addMesh(scene::MakeBox());
+  s.addInstance(plane, glm::scale(glm::mat4(1.0f), glm::vec3(6, 1, 6)), glm::vec3(0.8f));
+  glm::mat4 plank = glm::translate(glm::mat4(1.0f), glm::vec3(-1.5f, kPlankHeight, 0.0f));
+  s.addInstance(box, glm::scale(plank, glm::vec3(3.0f, kPlankTop - kPlankBottom, 5.0f)), glm::vec3(0.8f));
+  s.camera.position = {0.0f, cameraHeight, 0.001f};
+  s.camera.target = {0.0f, 0.0f, 0.0f};
+  s.camera.up = {0.0f, 0.0f, -1.0f};
+  s.camera.fovY = glm::radians(50.0f);
+  s.camera.nearZ = 0.1f;
+  s.camera.farZ = 10.0f;
+  s.light.direction = {0.0f, -1.0f, 0.0f};
+  s.light.ambient = 0.2f;
+  if (spot) {
+    scene::SpotLight l;
+    l.position = {0.0f, kSpotHeight, 0.0f};
+    l.direction = {0.0f, -1.0f, 0.0f};
+    l.range = 10.0f;
+    l.innerConeAngle = glm::radians(kSpotOuterDegrees - 5.0f);
+    l.outerConeAngle = glm::radians(kSpotOuterDegrees);
+    s.spotLights.push_back(l);
+  }
+  s.finalize();
+  return s;
+}
+
+// Geometric penumbra widths on the floor (world units) for the plank's mid height.
+double SunPenumbra(double degrees) { return kPlankHeight * 2.0 * std::tan(0.5 * glm::radians(degrees)); }
+double SpotPenumbra(double radius) { return 2.0 * radius * kPlankHeight / (kSpotHeight - kPlankHeight); }
+// One map texel on the floor.
+double SunTexel() { return 6.0 / kResolution; }
+double SpotTexel() { return kSpotHeight * 2.0 * std::tan(glm::radians(kSpotOuterDegrees)) / kResolution; }
+
+struct Ramp {
+  double x10 = 0, x90 = 0;  // mean crossings of visibility 0.1 and 0.9 along the rows
+  double width() const { return (x90 - x10) / 0.8; }
+  double centre() const { return 0.5 * (x10 + x90); }
+  std::vector<std::pair<float, float>> samples;  // (world x, visibility) of the floor pixels measured
+};
+
+// The central rows' visibility along x; each crossing interpolated between neighbouring pixels.
+Ramp MeasureRamp(const tech::LabBuffers& lab) {
+  Ramp r;
+  int rows = 0;
+  for (uint32_t y = lab.height / 2 - 3; y < lab.height / 2 + 3; ++y) {
+    std::vector<std::pair<float, float>> row;
+    for (uint32_t x = 0; x < lab.width; ++x) {
+      size_t i = size_t(y) * lab.width + x;
+      if (lab.drawn(i) && std::abs(lab.position[i].y) < 1e-3f) row.push_back({lab.position[i].x, lab.visibility[i]});
+    }
+    auto crossing = [&](float level) {
+      for (size_t k = 1; k < row.size(); ++k)
+        if (row[k - 1].second < level && row[k].second >= level) {
+          auto [xa, va] = row[k - 1];
+          auto [xb, vb] = row[k];
+          return double(xa) + (double(level) - va) / (double(vb) - va) * (double(xb) - xa);
+        }
+      return std::nan("");
+    };
+    r.x10 += crossing(0.1f);
+    r.x90 += crossing(0.9f);
+    r.samples.insert(r.samples.end(), row.begin(), row.end());
+    ++rows;
+  }
+  r.x10 /= rows;
+  r.x90 /= rows;
+  return r;
+}
+
+class PcssTest : public BackendTest {
+ protected:
+  tech::LabBuffers Render(const std::string& technique, const scene::Scene& s, std::map<std::string, std::string> params) {
+    params.emplace("resolution", std::to_string(kResolution));
+    params["filter"] = "pcss";
+    params.emplace("pcss_max_kernel", "31");
+    std::unique_ptr<tech::Technique> t = tech::CreateTechnique(technique);
+    t->Configure(device(), tech::ParamValues::Parse(technique, t->Params(), params));
+    tech::RendererOptions ro;
+    ro.lab = true;
+    tech::Renderer r(device(), s, std::move(t), kSize, kSize, ro);
+    r.RenderFrame(s.camera, s.light, tech::LitPass::Lab);
+    return r.ReadLab();
+  }
+
+  // The ramp's width and centre against the geometry, and exact 1 and 0 past its ends.
+  Ramp ExpectPenumbra(const std::string& what, const tech::LabBuffers& lab, double want, double texel, double cameraHeight = 1.0) {
+    Ramp r = MeasureRamp(lab);
+    std::printf("%s: penumbra %.5f (10-90 %% %.5f), geometry %.5f, ratio %.4f, centre %.5f\n", what.c_str(), r.width(), r.x90 - r.x10, want,
+                r.width() / want, r.centre());
+    const double pixel = cameraHeight * 2.0 * std::tan(glm::radians(25.0)) / kSize;  // at the floor
+    EXPECT_NEAR(r.width(), want, 0.02 * want) << what << ": 10-90 % distance " << r.x90 - r.x10;
+    EXPECT_NEAR(r.centre(), 0.0, texel + pixel) << what;
+    const double margin = 0.5 * want * 1.02 + 2 * texel + pixel;
+    int lit = 0, umbra = 0;
+    for (auto [x, v] : r.samples) {
+      if (x > margin) {
+        ++lit;
+        EXPECT_GE(v, 1.0f - 1e-6f) << what << " lit floor at x = " << x;
+      }
+      if (x < -margin) {
+        ++umbra;
+        EXPECT_LE(v, 1e-6f) << what << " umbra at x = " << x;
+      }
+    }
+    EXPECT_GT(lit, 100) << what;
+    EXPECT_GT(umbra, 100) << what;
+    return r;
+  }
+};
+
+TEST_P(PcssTest, SunPenumbraIsTheAngularSizeTimesTheHeight) {
+  scene::Scene s = PlankScene(false);
+  Ramp small = ExpectPenumbra("basic light_size=4", Render("basic", s, {{"light_size", "4"}}), SunPenumbra(4), SunTexel());
+  Ramp large = ExpectPenumbra("basic light_size=8", Render("basic", s, {{"light_size", "8"}}), SunPenumbra(8), SunTexel());
+  // Proportional: tan(4) / tan(2) = 2.0024.
+  EXPECT_NEAR(large.width() / small.width(), std::tan(glm::radians(4.0)) / std::tan(glm::radians(2.0)), 0.04);
+}
+
+TEST_P(PcssTest, SpotPenumbraFollowsSimilarTriangles) {
+  scene::Scene s = PlankScene(true);
+  Ramp small = ExpectPenumbra("spot light_size=0.05", Render("spot", s, {{"light_size", "0.05"}}), SpotPenumbra(0.05), SpotTexel());
+  Ramp large = ExpectPenumbra("spot light_size=0.1", Render("spot", s, {{"light_size", "0.1"}}), SpotPenumbra(0.1), SpotTexel());
+  EXPECT_NEAR(large.width() / small.width(), 2.0, 0.04);
+}
+
+// csm: each cascade is its own orthographic map with its own world texel size, which the fit
+// makes from the view and the resolution: the penumbra must not change with either. The camera
+// at 0.4 sees 0.37 of floor; the cascade covering it is about 0.41 wide, 0.0026 per texel at 160
+// and 0.0016 at 256 (texel bound for the centre and margins: 0.005); 1.2 degrees is a 0.042
+// penumbra: 14.5 pixels, 16 and 26 texels (under pcss_max_kernel, 31).
+TEST_P(PcssTest, CsmPenumbraDoesNotDependOnTheCascadeFit) {
+  const float height = 0.4f;
+  scene::Scene s = PlankScene(false, height);
+  for (auto [cascades, resolution] : {std::pair{"1", "160"}, {"3", "160"}, {"3", "256"}}) {
+    std::string what = std::string("csm cascades=") + cascades + " resolution=" + resolution + " light_size=1.2";
+    tech::LabBuffers lab = Render("csm", s, {{"light_size", "1.2"}, {"cascades", cascades}, {"resolution", resolution}});
+    ExpectPenumbra(what, lab, SunPenumbra(1.2), 0.005, height);
+  }
+}
+
+// A penumbra wider than pcss_max_kernel is clamped to it: 4 degrees wants 12 texels, 5 gives 5.
+TEST_P(PcssTest, MaxKernelClampsThePenumbra) {
+  scene::Scene s = PlankScene(false);
+  Ramp r = MeasureRamp(Render("basic", s, {{"light_size", "4"}, {"pcss_max_kernel", "5"}}));
+  EXPECT_NEAR(r.width(), 5 * SunTexel(), 0.04 * 5 * SunTexel());
+}
+
+SP_INSTANTIATE_BACKEND_TESTS(PcssTest);
+
+// Bad values are refused by name before any rendering: these run on the null backend too.
+class PcssValidationTest : public BackendTest {};
+
+TEST_P(PcssValidationTest, OutOfRangeParametersAreNamed) {
+  const std::pair<std::string, std::map<std::string, std::string>> cases[] = {
+      {"light_size", {{"filter", "pcss"}, {"light_size", "0"}}},
+      {"light_size", {{"filter", "pcss"}, {"light_size", "45"}}},
+      {"pcss_search", {{"filter", "pcss"}, {"pcss_search", "1"}}},
+      {"pcss_max_kernel", {{"filter", "pcss"}, {"pcss_max_kernel", "40"}}},
+      {"kernel", {{"filter", "box"}, {"kernel", "17"}}},
+      {"kernel", {{"filter", "gauss"}, {"kernel", "31"}}},
+  };
+  for (const std::string technique : {"basic", "spot", "csm"})
+    for (const auto& [name, params] : cases) {
+      if (technique == "spot" && name == "light_size" && params.at("light_size") == "45") continue;  // a radius: 45 is valid
+      std::unique_ptr<tech::Technique> t = tech::CreateTechnique(technique);
+      try {
+        t->Configure(device(), tech::ParamValues::Parse(technique, t->Params(), params));
+        ADD_FAILURE() << technique << ": expected an error naming " << name;
+      } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find(name + "="), std::string::npos) << e.what();
+      }
+    }
+  // sdsm writes its cascades' constants on the GPU without PCSS's: refused by name.
+  std::unique_ptr<tech::Technique> sdsm = tech::CreateTechnique("sdsm");
+  try {
+    sdsm->Configure(device(), tech::ParamValues::Parse("sdsm", sdsm->Params(), {{"filter", "pcss"}}));
+    ADD_FAILURE() << "sdsm: expected an error for filter=pcss";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("filter=pcss"), std::string::npos) << e.what();
+  }
+  // gathercmp takes 31.
+  std::unique_ptr<tech::Technique> t = tech::CreateTechnique("basic");
+  EXPECT_NO_THROW(t->Configure(device(), tech::ParamValues::Parse("basic", t->Params(), {{"filter", "gathercmp"}, {"kernel", "31"}})));
+}
+
+SP_INSTANTIATE_VALIDATION_TESTS(PcssValidationTest);
+
+// Mesa's one rasterizer and sampler under both backends and the toolchain's fixed arithmetic (as
+// for the other filters, shadow-filter-test.cpp): the PCSS images must be identical.
+TEST(PcssCrossBackend, PlankRendersIdenticallyOnBothBackends) {
+  for (bool spot : {false, true}) {
+    scene::Scene s = PlankScene(spot);
+    std::string technique = spot ? "spot" : "basic";
+    CrossBackendFrame f = RenderOnBothBackends(technique, {{"filter", "pcss"}, {"resolution", "512"}, {"light_size", spot ? "0.1" : "8"}}, s, 96, 96);
+    size_t differing = CompareImages("pcss-" + technique, 96, 96, f.images[0].data(), f.images[1].data(), 0);
+    if (f.mesa) EXPECT_EQ(differing, 0u) << technique;
+    else EXPECT_LT(differing, size_t(96 * 96 / 200)) << technique;
+  }
+}
+
+}  // namespace
+}  // namespace sp::test
