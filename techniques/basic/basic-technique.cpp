@@ -1,30 +1,48 @@
 // The basic technique: one directional shadow map fitted to the whole scene (the naive fit),
 // rendered depth-only into R32_TYPELESS with D3D11 rasterizer depth bias, sampled with the 2x2
 // hardware comparison filter. The reference point every other technique is measured against.
+// Optionally a wider filter (common/shadow-filter.hlsli) and, to test accelerating it, a secondary
+// map that decides whole footprints (accel: hpsm or the min/max baseline; techniques/hpsm-maps.h).
 #include <glm/ext/matrix_clip_space.hpp>
 #include <glm/ext/matrix_transform.hpp>
 
 #include <sp/tech/technique.h>
 
+#include "hpsm-maps.h"
+
 namespace sp::tech {
 namespace {
 
-class BasicTechnique final : public Technique {
+class BasicTechnique final : public Technique, public HpsmCounterSource {
  public:
   std::string Name() const override { return "basic"; }
 
   std::vector<ParamSpec> Params() const override {
-    return {
+    std::vector<ParamSpec> specs = {
         {ParamSpec::Int, "resolution", "shadow map width and height in texels", "2048", 16, 16384, {}},
         {ParamSpec::Int, "depth_bias", "D3D11 DepthBias (units of the depth format)", "200", -1e7, 1e7, {}},
         {ParamSpec::Float, "slope_bias", "D3D11 SlopeScaledDepthBias", "2.0", -100, 100, {}},
         {ParamSpec::Float, "bias_clamp", "D3D11 DepthBiasClamp (0 = none)", "0", -1, 1, {}},
+        {ParamSpec::Choice, "filter", "comparison filter (common/shadow-filter.hlsli)", "hw2x2", 0, 0, {"hw2x2", "box", "gauss", "gathercmp", "poisson"}},
+        {ParamSpec::Choice, "kernel", "filter kernel width in texels (box, gauss, gathercmp, poisson)", "3", 0, 0, {"3", "5", "7", "9"}},
     };
+    for (ParamSpec& h : HpsmParams()) specs.push_back(h);
+    return specs;
   }
 
   void Configure(Device& device, const ParamValues& p) override {
     resolution_ = uint32_t(p.getInt("resolution"));
     map_ = MakeDepthMap(device, resolution_, resolution_, "basic shadow map");
+    static const char* const kFilters[] = {"hw2x2", "box", "gauss", "gathercmp", "poisson"};
+    for (int i = 0; i < 5; ++i)
+      if (p.getChoice("filter") == kFilters[i]) filter_ = i;
+    kernel_ = filter_ == 0 ? 3 : std::stoi(p.getChoice("kernel"));
+    hpsm_ = ReadHpsmSettings(p, filter_, kernel_, resolution_);
+    if (Filtered()) mapArray_ = MakeSliceArraySrv(device, map_.texture.get());
+    if (hpsm_.accel != ShadowAccel::None) {
+      device_ = &device;
+      hpsmMaps_ = std::make_unique<HpsmMaps>(device, hpsm_, resolution_, resolution_, 1);
+    }
 
     RASTERIZER_DESC rd;
     rd.FrontCounterClockwise = true;  // glTF winding, as in the lit pass
@@ -56,17 +74,35 @@ class BasicTechnique final : public Technique {
     ctx.RSSetState(rasterizer_.get());
     ctx.OMSetDepthStencilState(nullptr, 0);
     trianglesSubmitted_ = drawer.DrawDepth(ctx, lightViewProj_);
+    if (hpsmMaps_) {
+      ctx.OMSetRenderTargets(0, nullptr, nullptr);
+      GpuTimer::Scope built(frame.timer, ctx, "hpsm");
+      hpsmMaps_->Build(ctx, mapArray_.get());
+    }
   }
 
   std::string LightingInclude() const override { return "basic/shadow.hlsli"; }
 
-  void BindLighting(DeviceContext& ctx) override {
-    ctx.PSSetConstantBuffers(2, {constants_.get()});
-    ctx.PSSetShaderResources(0, {map_.srv.get()});
-    ctx.PSSetSamplers(0, {sampler_.get()});
+  // None for the default (hw2x2, no accel): basic's original lookup, unchanged.
+  std::vector<hlsl::Define> LightingDefines() const override {
+    if (!Filtered()) return {};
+    std::vector<hlsl::Define> d = {{"SHADOW_FILTER", std::to_string(filter_)}, {"SHADOW_KERNEL", std::to_string(kernel_)}};
+    for (hlsl::Define& h : HpsmDefines(hpsm_)) d.push_back(h);
+    return d;
   }
 
-  ShadowStats Stats() const override { return {uint64_t(resolution_) * resolution_ * 4, trianglesSubmitted_}; }
+  void BindLighting(DeviceContext& ctx) override {
+    ctx.PSSetConstantBuffers(2, {constants_.get()});
+    ctx.PSSetShaderResources(0, {map_.srv.get(), mapArray_.get(), hpsmMaps_ ? hpsmMaps_->srv() : nullptr});
+    ctx.PSSetSamplers(0, {sampler_.get()});
+    if (hpsmMaps_) hpsmMaps_->BindCounters(ctx);
+  }
+
+  ShadowStats Stats() const override {
+    return {uint64_t(resolution_) * resolution_ * 4 + (hpsmMaps_ ? hpsmMaps_->memoryBytes() : 0), trianglesSubmitted_};
+  }
+
+  HpsmCounts HpsmDecisions() const override { return hpsmMaps_ ? hpsmMaps_->ReadCounters(*device_->GetImmediateContext()) : HpsmCounts{}; }
   std::vector<ShadowLayer> Layers() const override { return {{resolution_, resolution_}}; }
 
  private:
@@ -91,8 +127,15 @@ class BasicTechnique final : public Technique {
   };
   static_assert(sizeof(Constants) == 80);
 
+  bool Filtered() const { return filter_ != 0 || hpsm_.accel != ShadowAccel::None; }
+
   uint32_t resolution_ = 0;
+  int filter_ = 0, kernel_ = 3;
+  HpsmSettings hpsm_;
+  Device* device_ = nullptr;
+  std::unique_ptr<HpsmMaps> hpsmMaps_;
   DepthMap map_;
+  Ref<ShaderResourceView> mapArray_;  // the map as a one-layer Texture2DArray, for ShadowFilter
   Ref<RasterizerState> rasterizer_;
   Ref<SamplerState> sampler_;
   Ref<Buffer> constants_;
