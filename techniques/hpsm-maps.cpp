@@ -36,6 +36,7 @@ std::vector<ParamSpec> HpsmParams() {
       {ParamSpec::Choice, "accel", "skip the filter where a secondary map decides the whole footprint: hybrid min/max plane shadow maps, or the hierarchical min/max baseline", "none", 0, 0, {"none", "hpsm", "minmax"}},
       {ParamSpec::Int, "hpsm_block", "shadow-map texels per secondary texel and axis; 0: 4 for hpsm, the smallest power of two as wide as the filter's footprint for minmax", "0", 0, 256, {}},
       {ParamSpec::Float, "hpsm_eps", "hpsm: the largest depth residual of a block stored as a plane", "1e-6", 0, 0.5, {}},
+      {ParamSpec::Int, "hpsm_counters", "1: the lit pass counts its decisions for the lab (one atomic add per lookup); 0: no counting", "1", 0, 1, {}},
   };
 }
 
@@ -45,6 +46,7 @@ HpsmSettings ReadHpsmSettings(const ParamValues& p, int filter, int kernel, uint
   s.accel = a == "hpsm" ? ShadowAccel::Hpsm : a == "minmax" ? ShadowAccel::MinMax : ShadowAccel::None;
   s.reach = FilterReach(filter, kernel);
   s.eps = p.getFloat("hpsm_eps");
+  s.counters = p.getInt("hpsm_counters") != 0;
   int footprint = 2 * s.reach + 2;
   int block = p.getInt("hpsm_block");
   if (s.accel == ShadowAccel::MinMax) {
@@ -63,7 +65,8 @@ HpsmSettings ReadHpsmSettings(const ParamValues& p, int filter, int kernel, uint
 
 std::vector<hlsl::Define> HpsmDefines(const HpsmSettings& s) {
   if (s.accel == ShadowAccel::None) return {};
-  return {{"SHADOW_ACCEL", s.accel == ShadowAccel::Hpsm ? "1" : "2"}, {"HPSM_BLOCK", std::to_string(s.block)}, {"HPSM_REACH", std::to_string(s.reach)}};
+  return {{"SHADOW_ACCEL", s.accel == ShadowAccel::Hpsm ? "1" : "2"}, {"HPSM_BLOCK", std::to_string(s.block)}, {"HPSM_REACH", std::to_string(s.reach)},
+          {"HPSM_COUNTERS", s.counters ? "1" : "0"}};
 }
 
 HpsmMaps::HpsmMaps(Device& device, const HpsmSettings& s, uint32_t width, uint32_t height, uint32_t layers)
@@ -123,6 +126,7 @@ void HpsmMaps::Build(DeviceContext& ctx, ShaderResourceView* depth) {
 }
 
 void HpsmMaps::BindCounters(DeviceContext& ctx) {
+  if (!settings_.counters) return;
   UnorderedAccessView* uavs[] = {countersUav_.get()};
   ctx.OMSetRenderTargetsAndUnorderedAccessViews(KEEP_RENDER_TARGETS_AND_DEPTH_STENCIL, nullptr, nullptr, kCounterSlot, 1, uavs, nullptr);
 }

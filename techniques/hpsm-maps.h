@@ -18,14 +18,15 @@ struct HpsmSettings {
   int reach = 0;     // FilterReach of the technique's filter
   int block = 4;     // texels per secondary texel and axis (minmax: the level's width, 2^k)
   float eps = 0.0f;  // hpsm: the largest plane residual, in depth units
+  bool counters = true;  // the lit pass counts its decisions (HpsmCounterSource)
 };
 
-// The parameters: accel, hpsm_block, hpsm_eps.
+// The parameters: accel, hpsm_block, hpsm_eps, hpsm_counters.
 std::vector<ParamSpec> HpsmParams();
 // Reads them for a technique filtering with (filter, kernel) a map of `resolution` texels;
 // throws std::invalid_argument naming the parameter for values that cannot work.
 HpsmSettings ReadHpsmSettings(const ParamValues& p, int filter, int kernel, uint32_t resolution);
-// SHADOW_ACCEL, HPSM_BLOCK, HPSM_REACH for the lighting include (none for accel=none).
+// SHADOW_ACCEL, HPSM_BLOCK, HPSM_REACH, HPSM_COUNTERS for the lighting include (none for accel=none).
 std::vector<hlsl::Define> HpsmDefines(const HpsmSettings& s);
 
 // Decision counts of the lit pass (common/hpsm.hlsli's kHpsm* order).
@@ -38,7 +39,7 @@ struct HpsmCounts {
 };
 
 // Implemented by techniques with an `accel` parameter, beside Technique: the lit passes' decisions
-// since the last shadow pass (a readback stall; all zero with accel=none). Find it with
+// since the last shadow pass (a readback stall; all zero with accel=none or hpsm_counters=0). Find it with
 // dynamic_cast<const HpsmCounterSource*>(&technique).
 class HpsmCounterSource {
  public:

@@ -19,8 +19,10 @@ SamplerComparisonState ShadowSampler : register(s0);
 Texture2DArray<float> ShadowMapArray : register(t1);  // the same map, as ShadowFilter reads it
 #if defined(SHADOW_ACCEL) && SHADOW_ACCEL != 0
 Texture2DArray<float4> HpsmMap : register(t2);
+#if HPSM_COUNTERS
 // Decisions (kHpsm* words), for Stats(); u7 stays clear of the lab's six render targets.
 RWByteAddressBuffer HpsmCounters : register(u7);
+#endif
 #endif
 #endif
 
@@ -49,7 +51,9 @@ float ShadowVisibility(float3 worldPos, float3 worldNormal, float4 svPosition) {
 #if defined(SHADOW_ACCEL) && SHADOW_ACCEL != 0
   uint how;
   float v = HpsmShadowFilter(ShadowMapArray, ShadowSampler, HpsmMap, fi, how);
+#if HPSM_COUNTERS
   HpsmCounters.InterlockedAdd(how * 4, 1);
+#endif
   return v;
 #else
   return ShadowFilter(ShadowMapArray, ShadowSampler, fi);

@@ -2,7 +2,7 @@
 // Texture2DArray: one thread per secondary texel, which reads its whole support.
 //
 // A plane is fitted by least squares over the support (on a regular grid the slopes decouple:
-// a = sum((d - mean)(x - cx)) / sum((x - cx)^2)), and kept when its largest residual over the
+// a = sum(d (x - cx)) / sum((x - cx)^2)), and kept when its largest residual over the
 // support, measured with the same float expression the lookup uses, is within eps; otherwise
 // (and always in min/max mode) the texel holds the support's min and max. The fit only has to be
 // good, not exact: the residual stored with it is what the lookup's bounds rely on.
@@ -28,30 +28,26 @@ RWTexture2DArray<float4> hpsmOut : register(u0);
   int2 sx = HpsmSupport(int(id.x), int(block), before, after, int(mapSize.x));
   int2 sy = HpsmSupport(int(id.y), int(block), before, after, int(mapSize.y));
   int layer = int(id.z);
-  float lo = 3.0e38, hi = -3.0e38, sum = 0.0;
+  // One pass for min, max and the fit's sums: the support is symmetric about the origin, so
+  // sum(x - cx) = 0 and sum(d (x - cx)) needs no mean subtracted first.
+  float2 origin = HpsmPlaneOrigin(sx, sy);
+  float lo = 3.0e38, hi = -3.0e38, sum = 0.0, sxd = 0.0, syd = 0.0, sxx = 0.0, syy = 0.0;
   for (int y = sy.x; y <= sy.y; ++y) {
     for (int x = sx.x; x <= sx.y; ++x) {
       float d = depthMap.Load(int4(x, y, layer, 0));
+      float2 o = float2(x, y) - origin;
       lo = min(lo, d);
       hi = max(hi, d);
       sum += d;
+      sxd += d * o.x;
+      syd += d * o.y;
+      sxx += o.x * o.x;
+      syy += o.y * o.y;
     }
   }
   float4 result = float4(lo, hi, 0.0, kHpsmMinMaxTag);
   if (planes != 0) {
     float mean = sum / float((sx.y - sx.x + 1) * (sy.y - sy.x + 1));
-    float2 origin = HpsmPlaneOrigin(sx, sy);
-    float sxd = 0.0, syd = 0.0, sxx = 0.0, syy = 0.0;
-    for (int y = sy.x; y <= sy.y; ++y) {
-      for (int x = sx.x; x <= sx.y; ++x) {
-        float2 o = float2(x, y) - origin;
-        float d = depthMap.Load(int4(x, y, layer, 0)) - mean;
-        sxd += d * o.x;
-        syd += d * o.y;
-        sxx += o.x * o.x;
-        syy += o.y * o.y;
-      }
-    }
     float a = sxx > 0.0 ? sxd / sxx : 0.0, b = syy > 0.0 ? syd / syy : 0.0;
     float residual = 0.0;
     for (int y = sy.x; y <= sy.y; ++y) {

@@ -9,6 +9,7 @@
 //   SHADOW_ACCEL  1 hpsm, 2 minmax (0 or undefined: this file only declares the build's helpers)
 //   HPSM_BLOCK    shadow-map texels per secondary texel and axis (minmax: 2^level)
 //   HPSM_REACH    R, the footprint reach the maps were built for (below)
+//   HPSM_COUNTERS 1: the technique counts decisions (its own UAV; hpsm-maps.h's BindCounters)
 //
 // Footprint: a lookup centred at s (texel space, ShadowFilterSetup) reads only texels
 // [floor(s) - R, floor(s) + R + 1] per axis, clamped into the filter's [lo, hi]: R = 0 for hw2x2,
@@ -57,6 +58,10 @@ int2 HpsmSupport(int b, int block, int before, int after, int size) {
 // The plane's origin: the middle of the support, so its constant term is the mean depth and the
 // slopes multiply small offsets.
 float2 HpsmPlaneOrigin(int2 sx, int2 sy) { return float2(sx.x + sx.y, sy.x + sy.y) * 0.5; }
+
+#ifndef HPSM_COUNTERS
+#define HPSM_COUNTERS 0
+#endif
 
 #if defined(SHADOW_ACCEL) && SHADOW_ACCEL != 0
 

@@ -63,10 +63,11 @@ class BasicTechnique final : public Technique, public HpsmCounterSource {
     Constants c{lightViewProj_, glm::vec2(float(resolution_)), glm::vec2(0.0f)};
     ctx.UpdateSubresource(constants_.get(), 0, nullptr, &c, 0, 0);
 
-    // The map is read by the previous frame's lit pass; unbind it before writing, as a D3D11
-    // program does (the runtime would do it anyway, with a warning).
-    ShaderResourceView* none = nullptr;
-    ctx.PSSetShaderResources(0, 1, &none);
+    // The map (t0, t1) and the secondary map (t2) are read by the previous frame's lit pass;
+    // unbind them before writing, as a D3D11 program does (the runtime would do it anyway, with a
+    // warning).
+    ShaderResourceView* none[3] = {};
+    ctx.PSSetShaderResources(0, 3, none);
     ctx.OMSetRenderTargets(0, nullptr, map_.dsv.get());
     ctx.ClearDepthStencilView(map_.dsv.get(), CLEAR_DEPTH, 1.0f, 0);
     VIEWPORT vp{0, 0, float(resolution_), float(resolution_), 0, 1};
