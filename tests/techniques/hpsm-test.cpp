@@ -177,10 +177,12 @@ CpuTexel CpuConstruct(int bx, int by, int block, int before, int after) {
 TEST_P(HpsmTest, SecondaryMapsMatchTheCpuConstruction) {
   struct Case {
     tech::ShadowAccel accel;
-    int filter, kernel;
+    int filter, kernel, block;
   };
-  for (Case k : {Case{tech::ShadowAccel::Hpsm, kBox, 3}, Case{tech::ShadowAccel::Hpsm, kGatherCmp, 5}, Case{tech::ShadowAccel::MinMax, kBox, 3}}) {
-    tech::HpsmSettings s = Settings(k.accel, k.filter, k.kernel);
+  // Block 16: the group's supports no longer fit the build's groupshared tile (direct loads).
+  for (Case k : {Case{tech::ShadowAccel::Hpsm, kBox, 3, 0}, Case{tech::ShadowAccel::Hpsm, kGatherCmp, 5, 0}, Case{tech::ShadowAccel::Hpsm, kPoisson, 9, 16},
+                 Case{tech::ShadowAccel::MinMax, kBox, 3, 0}, Case{tech::ShadowAccel::MinMax, kBox, 9, 16}}) {
+    tech::HpsmSettings s = Settings(k.accel, k.filter, k.kernel, k.block);
     bool hpsm = k.accel == tech::ShadowAccel::Hpsm;
     std::unique_ptr<tech::HpsmMaps> maps = Build(s);
     std::vector<glm::vec4> got = Texels(*maps);
@@ -217,10 +219,10 @@ TEST_P(HpsmTest, SecondaryMapsMatchTheCpuConstruction) {
       }
     std::printf("[ hpsm ] filter %d kernel %d accel %s block %d: %d plane texels, %d min/max, %d ambiguous\n", k.filter, k.kernel, hpsm ? "hpsm" : "minmax",
                 s.block, planes, minMax, ambiguous);
-    if (hpsm) {
+    if (hpsm && s.block == 4) {
       EXPECT_GT(planes, minMax) << "most of the map is the tilted plane";
     }
-    EXPECT_GT(minMax, 10) << "the box's edges and the noise need min/max texels";
+    EXPECT_GT(minMax, hpsm ? 4 : 10) << "the box's edges and the noise need min/max texels";
     EXPECT_LE(ambiguous, 2);
   }
 }
