@@ -20,15 +20,18 @@
 // bits, as on D3D11 hardware).
 //
 // Exactness: with LESS_EQUAL (reference <= depth is lit) every tap is 1 when each reference any
-// tap uses is <= every footprint depth, 0 when each is > every footprint depth; the filters' tap
+// tap uses is <= every depth it reads, 0 when each is > every depth it reads; the filters' tap
 // weights then sum to the result, 1 (box, gauss, poisson exactly; gathercmp to the float rounding
-// of its weights, about 1e-7) or 0. Decisions use bounds on both sides:
-//   references: ShadowFilterReference at taps within R + 2 texels of s (clamping moves a tap by at
-//     most half a texel when s lies inside [lo - 1/2, hi + 1/2], which is checked), so the spread is
-//     (R + 2) dot(|depthGradient|, texelSize) plus a float-rounding slack; exact without gradient;
-//   depths: min/max exactly; a plane block bounds every texel of its support by the plane over
-//     the footprint's rectangle (extremes at its corners) +- the residual stored with it, plus
-//     kHpsmRounding of the magnitudes involved for the float evaluation here and in the build.
+// of its weights, about 1e-7) or 0. Every tap position p (ShadowFilterTap's clamped p, gathercmp's
+// g + 1/2) lies in the footprint's rectangle [t0, t1]^2, and its reference is
+// reference + (p - s).G (ShadowFilterReference). Decisions:
+//   min/max: the references' range over the rectangle (exact without a gradient) against the
+//     block's min and max, which are exact;
+//   plane: Q(t) = plane(t) - reference(t), affine, at least |G|1 + residual above zero (lit) or
+//     below (shadowed) over the whole rectangle; a tap reading t is within one texel of it, so its
+//     reference differs from reference(t) by at most |G|1, and depth(t) from plane(t) by the stored
+//     residual. kHpsmRounding of the magnitudes involved covers the float evaluation of the plane
+//     and the references here and in the build.
 #ifndef SP_HPSM_HLSLI
 #define SP_HPSM_HLSLI
 
@@ -90,13 +93,21 @@ float2 HpsmPlaneOrigin(int2 sx, int2 sy) { return float2(sx.x + sx.y, sy.x + sy.
 // Which decision the secondary map makes for lookup i (kHpsm*).
 uint HpsmDecide(Texture2DArray<float4> hpsm, ShadowFilterInput i) {
   ShadowFilterFrame f = ShadowFilterSetup(i);
+  // Clamping moves the taps of a receiver outside the clamp rectangle off the footprint below.
   if (any(f.s < f.lo - 0.5) || any(f.s > f.hi + 0.5)) return kHpsmFiltered;
-  float spread = (HPSM_REACH + 2) * dot(abs(i.depthGradient), i.texelSize);
-  float slack = spread > 0.0 ? spread * kHpsmRounding + abs(f.reference) * kHpsmRounding : 0.0;
-  float refLo = f.reference - spread - slack, refHi = f.reference + spread + slack;
   int2 fs = int2(floor(f.s));
   int2 t0 = max(int2(f.lo), fs - HPSM_REACH), t1 = min(int2(f.hi), fs + HPSM_REACH + 1);
   int layer = int(i.layer);
+  // References: a tap at p compares reference + (p - s).G, G the receiver's depth step per texel,
+  // and p lies in the footprint's rectangle (both texels it reads do), so the references lie within
+  // refExtent of their value at the rectangle's middle m. Exact without a gradient.
+  float2 G = i.depthGradient * i.texelSize;
+  float2 m = float2(t0 + t1) * 0.5, e = float2(t1 - t0) * 0.5;
+  float refCentre = f.reference + dot(m - f.s, G);
+  float refExtent = dot(abs(G), e);
+  bool tilted = any(G != 0.0);
+  float refSlack = tilted ? kHpsmRounding * (abs(f.reference) + dot(abs(G), abs(m - f.s) + e)) : 0.0;
+  float refLo = refCentre - refExtent - refSlack, refHi = refCentre + refExtent + refSlack;
 #if SHADOW_ACCEL == 2
   // The level whose texels are at least as wide as the footprint (2R + 2 <= HPSM_BLOCK): the
   // footprint spans at most 2 x 2 of them.
@@ -118,14 +129,19 @@ uint HpsmDecide(Texture2DArray<float4> hpsm, ShadowFilterInput i) {
     if (refLo > h.y) return kHpsmShadowedMinMax;
     return kHpsmFiltered;
   }
+  // A plane follows a tilted receiver: compare depth and reference texel by texel. A tap at p
+  // reads texels t within one texel of p per axis, so its reference is within |G|1 of
+  // reference(t); every t has P(t) - residual <= depth(t) <= P(t) + residual. Q(t) = P(t) -
+  // reference(t) is affine, its extremes over the rectangle at the corners.
   float2 origin = HpsmPlaneOrigin(HpsmSupport(b.x, HPSM_BLOCK, HPSM_REACH, HPSM_REACH + 1, mapSize.x),
                                   HpsmSupport(b.y, HPSM_BLOCK, HPSM_REACH, HPSM_REACH + 1, mapSize.y));
-  float2 m = float2(t0 + t1) * 0.5 - origin, e = float2(t1 - t0) * 0.5;
-  float centre = h.z + h.x * m.x + h.y * m.y;
-  float extent = abs(h.x) * e.x + abs(h.y) * e.y;
-  float margin = h.w + kHpsmRounding * (1.0 + abs(h.z) + abs(h.x) * (abs(m.x) + e.x) + abs(h.y) * (abs(m.y) + e.y));
-  if (refHi <= centre - extent - margin) return kHpsmLitPlane;
-  if (refLo > centre + extent + margin) return kHpsmShadowedPlane;
+  float2 mo = m - origin;
+  float q = h.z + h.x * mo.x + h.y * mo.y - refCentre;
+  float qExtent = abs(h.x - G.x) * e.x + abs(h.y - G.y) * e.y;
+  float margin = h.w + dot(abs(G), float2(1, 1)) + refSlack +
+                 kHpsmRounding * (1.0 + abs(h.z) + abs(f.reference) + abs(h.x) * (abs(mo.x) + e.x) + abs(h.y) * (abs(mo.y) + e.y) + refExtent);
+  if (q - qExtent >= margin) return kHpsmLitPlane;
+  if (q + qExtent < -margin) return kHpsmShadowedPlane;
   return kHpsmFiltered;
 #endif
 }

@@ -29,6 +29,7 @@
 #include <memory>
 
 #include "cascade-fit.h"
+#include "hpsm-maps.h"
 #include "moments/moment-maps.h"
 #include <sp/tech/technique.h>
 
@@ -52,6 +53,7 @@ struct CsmSettings {
   int depthBias = 100;
   float slopeBias = 2.0f;
   float normalOffset = 1.0f;  // texels of the selected cascade
+  HpsmSettings hpsm;          // accel (comparison filters; sdsm leaves it at none)
 };
 
 std::vector<ParamSpec> CsmParams();
@@ -66,7 +68,7 @@ struct CascadeRegion {
   uint32_t x = 0, y = 0;  // top-left texel of its region in the slice
 };
 
-class CsmTechnique final : public Technique {
+class CsmTechnique final : public Technique, public HpsmCounterSource {
  public:
   std::string Name() const override { return "csm"; }
   std::vector<ParamSpec> Params() const override { return CsmParams(); }
@@ -79,6 +81,7 @@ class CsmTechnique final : public Technique {
   void BindLighting(DeviceContext& ctx) override;
   ShadowStats Stats() const override;
   std::vector<ShadowLayer> Layers() const override;
+  HpsmCounts HpsmDecisions() const override;
 
   // For tests and debug views.
   const CsmSettings& settings() const { return settings_; }
@@ -109,6 +112,8 @@ class CsmTechnique final : public Technique {
   std::unique_ptr<MomentMaps> moments_;
   Ref<ShaderResourceView> depthSrv_;  // map_ as MomentMaps::Convert reads it
   std::vector<float> blurRadii_;
+  Device* device_ = nullptr;
+  std::unique_ptr<HpsmMaps> hpsm_;  // accel: built from every slice after the cascades
 };
 
 }  // namespace sp::tech::csm
