@@ -2,7 +2,7 @@
 // secondary maps of common/hpsm.hlsli (hybrid min/max plane shadow maps, or the hierarchical
 // min/max baseline), their parameters, their build pass and the lit pass's decision counters.
 #pragma once
-#include <array>
+#include <sp/tech/hpsm-counters.h>
 #include <sp/tech/technique.h>
 
 namespace sp::tech {
@@ -28,24 +28,6 @@ std::vector<ParamSpec> HpsmParams();
 HpsmSettings ReadHpsmSettings(const ParamValues& p, int filter, int kernel, uint32_t resolution);
 // SHADOW_ACCEL, HPSM_BLOCK, HPSM_REACH, HPSM_COUNTERS for the lighting include (none for accel=none).
 std::vector<hlsl::Define> HpsmDefines(const HpsmSettings& s);
-
-// Decision counts of the lit pass (common/hpsm.hlsli's kHpsm* order).
-struct HpsmCounts {
-  std::array<uint64_t, 5> n{};  // lit min/max, shadowed min/max, lit plane, shadowed plane, filtered
-  uint64_t total() const { return n[0] + n[1] + n[2] + n[3] + n[4]; }
-  double minMaxFraction() const { return total() ? double(n[0] + n[1]) / double(total()) : 0.0; }
-  double planeFraction() const { return total() ? double(n[2] + n[3]) / double(total()) : 0.0; }
-  double filteredFraction() const { return total() ? double(n[4]) / double(total()) : 0.0; }
-};
-
-// Implemented by techniques with an `accel` parameter, beside Technique: the lit passes' decisions
-// since the last shadow pass (a readback stall; all zero with accel=none or hpsm_counters=0). Find it with
-// dynamic_cast<const HpsmCounterSource*>(&technique).
-class HpsmCounterSource {
- public:
-  virtual ~HpsmCounterSource() = default;
-  virtual HpsmCounts HpsmDecisions() const = 0;
-};
 
 class HpsmMaps {
  public:
