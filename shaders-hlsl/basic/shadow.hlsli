@@ -20,7 +20,7 @@ Texture2DArray<float> ShadowMapArray : register(t1);  // the same map, as Shadow
 #if defined(SHADOW_ACCEL) && SHADOW_ACCEL != 0
 Texture2DArray<float4> HpsmMap : register(t2);
 #if HPSM_COUNTERS
-// Decisions (kHpsm* words), for Stats(); u7 stays clear of the lab's six render targets.
+// Decisions (kHpsm* words), for HpsmDecisions(); u7 stays clear of the lab's six render targets.
 RWByteAddressBuffer HpsmCounters : register(u7);
 #endif
 #endif

@@ -38,7 +38,8 @@ class BasicTechnique final : public Technique, public HpsmCounterSource {
       if (p.getChoice("filter") == kFilters[i]) filter_ = i;
     kernel_ = filter_ == 0 ? 3 : std::stoi(p.getChoice("kernel"));
     hpsm_ = ReadHpsmSettings(p, filter_, kernel_, resolution_);
-    if (Filtered()) mapArray_ = MakeSliceArraySrv(device, map_.texture.get());
+    mapArray_ = Filtered() ? MakeSliceArraySrv(device, map_.texture.get()) : nullptr;
+    hpsmMaps_.reset();
     if (hpsm_.accel != ShadowAccel::None) {
       device_ = &device;
       hpsmMaps_ = std::make_unique<HpsmMaps>(device, hpsm_, resolution_, resolution_, 1);
