@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "bench.h"
+#include <sp/tech/hpsm-counters.h>
 
 namespace sp::bench {
 
@@ -117,6 +118,10 @@ RunResult RunOne(const RunSpec& spec, eval::ReferenceCache& reference, const Pro
   r.shadowTriangles = uint64_t(Median(AfterWarmup(triangles)));
   r.shadowLayersRendered = uint64_t(Median(AfterWarmup(layers)));
   r.shadowMemoryBytes = tech.Stats().memoryBytes;
+  if (auto* source = dynamic_cast<const tech::HpsmCounterSource*>(&tech)) {
+    tech::HpsmCounts c = source->HpsmDecisions();  // counted since the last frame's shadow pass
+    if (c.total()) r.hpsmDecisions = {{"minmax", c.minMaxFraction()}, {"plane", c.planeFraction()}, {"filtered", c.filteredFraction()}};
+  }
 
   // --- 2. Measurement: the lab's lit pass, read back and judged.
   // The directional light, or the local light a local-light technique is judged on.

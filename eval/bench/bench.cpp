@@ -158,6 +158,11 @@ nlohmann::json RunToJson(const RunResult& r, const std::map<std::string, std::st
       {"shadow_triangles", r.shadowTriangles},
       {"shadow_layers_rendered", r.shadowLayersRendered},
   };
+  if (!r.hpsmDecisions.empty()) {
+    json h = json::object();
+    for (const auto& [k, v] : r.hpsmDecisions) h[k] = Round(v, 1e4);
+    m["hpsm_decisions"] = h;
+  }
   json params = json::object(), given = json::object();
   for (const auto& [k, v] : r.params) params[k] = v;
   for (const auto& [k, v] : r.paramsGiven) given[k] = v;

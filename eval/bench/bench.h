@@ -65,6 +65,9 @@ struct RunResult {
   double cpuMs = 0;                         // median
   uint64_t shadowMemoryBytes = 0, shadowTriangles = 0;
   uint64_t shadowLayersRendered = 0;  // median per frame; 0 when the technique does not count them
+  // Accelerated filters (accel=hpsm|minmax with counters): fractions of the last timed frame's
+  // lookups decided by min/max ("minmax"), by a plane ("plane"), sent to the filter ("filtered").
+  std::map<std::string, double> hpsmDecisions;
 
   std::vector<double> flickerSeries;        // frames 1..N-1
   std::vector<double> misclassifiedSeries, gpuTotalSeries, cpuSeries;  // frames 0..N-1

@@ -1,8 +1,12 @@
 // Lighting side of the basic technique: one shadow map fitted to the scene, sampled with the
 // hardware's 2x2 comparison filter (SampleCmpLevelZero), or with the PCF library's filter
-// (SHADOW_FILTER 1..4 with SHADOW_KERNEL, 5 pcss).
+// (SHADOW_FILTER 1..4 with SHADOW_KERNEL, 5 pcss), and SHADOW_ACCEL's secondary map deciding
+// whole footprints before the filter runs (common/hpsm.hlsli).
 #include "common/shadow-lookup.hlsli"
 #include "common/shadow-pcss.hlsli"
+#if defined(SHADOW_ACCEL) && SHADOW_ACCEL != 0
+#include "common/hpsm.hlsli"
+#endif
 
 cbuffer BasicShadow : register(b2) {
   float4x4 lightViewProj;
@@ -13,6 +17,13 @@ cbuffer BasicShadow : register(b2) {
 
 Texture2DArray<float> ShadowMap : register(t0);
 SamplerComparisonState ShadowSampler : register(s0);
+#if defined(SHADOW_ACCEL) && SHADOW_ACCEL != 0
+Texture2DArray<float4> HpsmMap : register(t1);
+#if HPSM_COUNTERS
+// Decisions (kHpsm* words), for HpsmDecisions(); u7 stays clear of the lab's six render targets.
+RWByteAddressBuffer HpsmCounters : register(u7);
+#endif
+#endif
 
 // Map coordinates of a world point: uv in [0, 1] (D3D: NDC +y is the top row, so v = 0.5 - 0.5 y)
 // and the light-space depth.
@@ -27,16 +38,21 @@ bool BasicOutsideMap(float3 c) { return any(c.xy < 0.0) || any(c.xy > 1.0) || c.
 float ShadowVisibility(float3 worldPos, float3 worldNormal, float4 svPosition) {
   float3 c = BasicShadowCoord(worldPos);
   if (BasicOutsideMap(c)) return 1.0;
-#if SHADOW_FILTER == 0
-  return ShadowMap.SampleCmpLevelZero(ShadowSampler, float3(c.xy, 0), c.z);
-#else
   // The rasterizer's depth bias is the only bias: no receiver-plane gradient.
   ShadowFilterInput i = {c.xy, 0.0, c.z, 1.0 / shadowMapSize, float4(0, 0, 1, 1), float2(0, 0), svPosition.xy};
 #if SHADOW_FILTER == 5
   return ShadowFilterPcss(ShadowMap, ShadowSampler, i, basicPcss);
+#elif defined(SHADOW_ACCEL) && SHADOW_ACCEL != 0
+  uint how;
+  float v = HpsmShadowFilter(ShadowMap, ShadowSampler, HpsmMap, i, how);
+#if HPSM_COUNTERS
+  HpsmCounters.InterlockedAdd(how * 4, 1);
+#endif
+  return v;
+#elif SHADOW_FILTER == 0
+  return ShadowMap.SampleCmpLevelZero(ShadowSampler, float3(c.xy, 0), c.z);
 #else
   return ShadowFilter(ShadowMap, ShadowSampler, i);
-#endif
 #endif
 }
 

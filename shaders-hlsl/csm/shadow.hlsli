@@ -6,8 +6,9 @@
 //
 // Defines: CSM_MOMENTS 1 selects moment filtering (techniques/moments; the MOMENT_* defines of
 // moments/moments.hlsli come with it), else SHADOW_FILTER and SHADOW_KERNEL select the comparison
-// filter of common/shadow-filter.hlsli (5: pcss, common/shadow-pcss.hlsli). Selection, blending
-// and the bias mode are uniform branches on constants.
+// filter of common/shadow-filter.hlsli (5: pcss, common/shadow-pcss.hlsli), and SHADOW_ACCEL its
+// acceleration (common/hpsm.hlsli). Selection, blending and the bias mode are uniform branches on
+// constants.
 #include "common/frame.hlsli"
 #include "common/shadow-lookup.hlsli"
 // Also for the moment filters: NormalOffset.
@@ -45,6 +46,14 @@ SamplerState CsmMomentSampler : register(s0);
 #else
 Texture2DArray<float> CsmMap : register(t0);
 SamplerComparisonState CsmSampler : register(s0);
+#if defined(SHADOW_ACCEL) && SHADOW_ACCEL != 0
+#include "common/hpsm.hlsli"
+// The secondary map of every slice (common/hpsm.hlsli); decisions counted for the lab at u7.
+Texture2DArray<float4> CsmHpsm : register(t1);
+#if HPSM_COUNTERS
+RWByteAddressBuffer CsmHpsmCounters : register(u7);
+#endif
+#endif
 #endif
 
 static const int kCsmBiasNormal = 2;
@@ -181,6 +190,13 @@ float CsmFiltered(int c, float3 lv, float3 lvDdx, float3 lvDdy, float3 worldNorm
   pi.maxKernel = csmPcss.z;
   pi.padPcss = 0.0;
   return ShadowFilterPcss(CsmMap, CsmSampler, fi, pi);
+#elif defined(SHADOW_ACCEL) && SHADOW_ACCEL != 0
+  uint how;
+  float v = HpsmShadowFilter(CsmMap, CsmSampler, CsmHpsm, fi, how);
+#if HPSM_COUNTERS
+  CsmHpsmCounters.InterlockedAdd(how * 4, 1);
+#endif
+  return v;
 #else
   return ShadowFilter(CsmMap, CsmSampler, fi);
 #endif

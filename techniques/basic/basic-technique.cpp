@@ -2,17 +2,20 @@
 // rendered depth-only into R32_TYPELESS with D3D11 rasterizer depth bias, sampled with the 2x2
 // hardware comparison filter (the default, the reference point every other technique is measured
 // against) or with the PCF library's filters, PCSS included (the sun as a disc of `light_size`
-// degrees; docs/techniques.md).
+// degrees; docs/techniques.md); optionally a secondary map decides whole footprints before the
+// filter runs (accel: hpsm or the min/max baseline; techniques/hpsm-maps.h).
 #include <glm/ext/matrix_clip_space.hpp>
 #include <glm/ext/matrix_transform.hpp>
 
 #include "pcf-params.h"
 #include <sp/tech/technique.h>
 
+#include "hpsm-maps.h"
+
 namespace sp::tech {
 namespace {
 
-class BasicTechnique final : public Technique {
+class BasicTechnique final : public Technique, public HpsmCounterSource {
  public:
   std::string Name() const override { return "basic"; }
 
@@ -26,6 +29,7 @@ class BasicTechnique final : public Technique {
         PcfKernelParam("box, gauss, gathercmp, poisson"),
     };
     for (const ParamSpec& p : PcssParamSpecs(PcssLight::Directional)) specs.push_back(p);
+    for (ParamSpec& h : HpsmParams()) specs.push_back(h);
     return specs;
   }
 
@@ -38,6 +42,12 @@ class BasicTechnique final : public Technique {
     map_ = MakeDepthMap(device, resolution_, resolution_, "basic shadow map");
     // The PCF library reads Texture2DArray; a one-slice array view of the same map.
     arraySrv_ = MakeSliceArraySrv(device, map_.texture.get());
+    hpsm_ = ReadHpsmSettings(p, filter_, kernel_, resolution_);
+    hpsmMaps_.reset();
+    if (hpsm_.accel != ShadowAccel::None) {
+      device_ = &device;
+      hpsmMaps_ = std::make_unique<HpsmMaps>(device, hpsm_, resolution_, resolution_, 1);
+    }
 
     RASTERIZER_DESC rd;
     rd.FrontCounterClockwise = true;  // glTF winding, as in the lit pass
@@ -60,10 +70,10 @@ class BasicTechnique final : public Technique {
                 OrthoPcssConstants(pcss_, fit.nearZ, fit.farZ, fit.extent / float(resolution_))};
     ctx.UpdateSubresource(constants_.get(), 0, nullptr, &c, 0, 0);
 
-    // The map is read by the previous frame's lit pass; unbind it before writing, as a D3D11
-    // program does (the runtime would do it anyway, with a warning).
-    ShaderResourceView* none = nullptr;
-    ctx.PSSetShaderResources(0, 1, &none);
+    // The map (t0) and the secondary map (t1) are read by the previous frame's lit pass; unbind
+    // them before writing, as a D3D11 program does (the runtime would do it anyway, with a warning).
+    ShaderResourceView* none[2] = {};
+    ctx.PSSetShaderResources(0, 2, none);
     ctx.OMSetRenderTargets(0, nullptr, map_.dsv.get());
     ctx.ClearDepthStencilView(map_.dsv.get(), CLEAR_DEPTH, 1.0f, 0);
     VIEWPORT vp{0, 0, float(resolution_), float(resolution_), 0, 1};
@@ -71,22 +81,34 @@ class BasicTechnique final : public Technique {
     ctx.RSSetState(rasterizer_.get());
     ctx.OMSetDepthStencilState(nullptr, 0);
     trianglesSubmitted_ = drawer.DrawDepth(ctx, lightViewProj_);
+    if (hpsmMaps_) {
+      ctx.OMSetRenderTargets(0, nullptr, nullptr);
+      GpuTimer::Scope built(frame.timer, ctx, "hpsm");
+      hpsmMaps_->Build(ctx, arraySrv_.get());
+    }
   }
 
   std::string LightingInclude() const override { return "basic/shadow.hlsli"; }
   // hw2x2 and pcss ignore the kernel: one variant each.
   std::vector<hlsl::Define> LightingDefines() const override {
     bool sized = filter_ != 0 && filter_ != kPcssFilter;
-    return {{"SHADOW_FILTER", std::to_string(filter_)}, {"SHADOW_KERNEL", std::to_string(sized ? kernel_ : 3)}};
+    std::vector<hlsl::Define> d = {{"SHADOW_FILTER", std::to_string(filter_)}, {"SHADOW_KERNEL", std::to_string(sized ? kernel_ : 3)}};
+    for (hlsl::Define& h : HpsmDefines(hpsm_)) d.push_back(h);
+    return d;
   }
 
   void BindLighting(DeviceContext& ctx) override {
     ctx.PSSetConstantBuffers(2, {constants_.get()});
-    ctx.PSSetShaderResources(0, {arraySrv_.get()});
+    ctx.PSSetShaderResources(0, {arraySrv_.get(), hpsmMaps_ ? hpsmMaps_->srv() : nullptr});
     ctx.PSSetSamplers(0, {sampler_.get()});
+    if (hpsmMaps_) hpsmMaps_->BindCounters(ctx);
   }
 
-  ShadowStats Stats() const override { return {uint64_t(resolution_) * resolution_ * 4, trianglesSubmitted_}; }
+  ShadowStats Stats() const override {
+    return {uint64_t(resolution_) * resolution_ * 4 + (hpsmMaps_ ? hpsmMaps_->memoryBytes() : 0), trianglesSubmitted_};
+  }
+
+  HpsmCounts HpsmDecisions() const override { return hpsmMaps_ ? hpsmMaps_->ReadCounters(*device_->GetImmediateContext()) : HpsmCounts{}; }
   std::vector<ShadowLayer> Layers() const override { return {{resolution_, resolution_}}; }
 
  private:
@@ -120,6 +142,9 @@ class BasicTechnique final : public Technique {
   uint32_t resolution_ = 0;
   int filter_ = 0, kernel_ = 3;
   PcssSettings pcss_;
+  HpsmSettings hpsm_;
+  Device* device_ = nullptr;
+  std::unique_ptr<HpsmMaps> hpsmMaps_;
   DepthMap map_;
   Ref<ShaderResourceView> arraySrv_;
   Ref<RasterizerState> rasterizer_;

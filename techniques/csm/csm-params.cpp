@@ -42,6 +42,10 @@ std::vector<ParamSpec> CsmParams() {
     m.help += " (moment filters only)";
     specs.push_back(m);
   }
+  for (ParamSpec h : HpsmParams()) {
+    h.help += " (comparison filters only)";
+    specs.push_back(h);
+  }
   specs.push_back({P::Choice, "anisotropy", "maximum anisotropy of the moment lookups, 1 = trilinear (moment filters only)", "1", 0, 0,
                    {"1", "2", "4", "8", "16"}});
   return specs;
@@ -110,6 +114,16 @@ CsmSettings SettingsFrom(const ParamValues& p, const std::string& technique) {
   if (f.resolution < 8 * f.padTexels)
     throw std::invalid_argument(prefix + "resolution=" + std::to_string(f.resolution) + " is too small for the filter's padding of " +
                                 std::to_string(f.padTexels) + " texels; use at least " + std::to_string(8 * f.padTexels));
+  // Techniques sharing these parameters without accel (sdsm) keep it at none.
+  if (p.all().count("accel")) {
+    if (s.moments && p.getChoice("accel") != "none")
+      throw std::invalid_argument(prefix + "accel=" + p.getChoice("accel") + " needs a comparison filter (filter is " + filter + ")");
+    try {
+      if (!s.moments) s.hpsm = ReadHpsmSettings(p, s.filter, s.filter == 0 ? 3 : s.kernel, f.resolution);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(prefix + e.what());
+    }
+  }
   if (s.moments) {
     // The moment blur reaches `blur` world units, a different number of texels per cascade: the
     // fit pads each cascade by its own share, within the same 1/8 of the region the fixed padding

@@ -75,6 +75,9 @@ void CsmTechnique::Configure(Device& device, const ParamValues& params) {
   } else {
     srv_ = MakeSliceArraySrv(device, map_.get());
   }
+  device_ = &device;
+  hpsm_.reset();
+  if (settings_.hpsm.accel != ShadowAccel::None) hpsm_ = std::make_unique<HpsmMaps>(device, settings_.hpsm, textureWidth_, textureHeight_, arraySize_);
 
   RASTERIZER_DESC rd;
   rd.FrontCounterClockwise = true;  // glTF winding, as in the lit pass
@@ -106,7 +109,9 @@ std::vector<hlsl::Define> CsmTechnique::Defines(const CsmSettings& s) {
     return d;
   }
   int kernel = s.filter == 0 || s.filter == kPcssFilter ? 3 : s.kernel;
-  return {{"SHADOW_FILTER", std::to_string(s.filter)}, {"SHADOW_KERNEL", std::to_string(kernel)}};
+  std::vector<hlsl::Define> d = {{"SHADOW_FILTER", std::to_string(s.filter)}, {"SHADOW_KERNEL", std::to_string(kernel)}};
+  for (const hlsl::Define& h : HpsmDefines(s.hpsm)) d.push_back(h);
+  return d;
 }
 
 CascadeRegion CsmTechnique::region(int c) const {
@@ -143,6 +148,11 @@ void CsmTechnique::WriteConstants(DeviceContext& ctx, const FrameInputs& frame) 
 
 void CsmTechnique::RenderShadows(DeviceContext& ctx, SceneDrawer& drawer, const FrameInputs& frame) {
   DrawCascades(ctx, drawer, frame);
+  if (hpsm_) {
+    ctx.OMSetRenderTargets(0, nullptr, nullptr);
+    GpuTimer::Scope built(frame.timer, ctx, "hpsm");
+    hpsm_->Build(ctx, srv_.get());
+  }
   if (!moments_) return;
   // Convert reads the depth through an SRV: it must not stay bound for writing.
   ctx.OMSetRenderTargets(0, nullptr, nullptr);
@@ -168,9 +178,9 @@ void CsmTechnique::DrawCascades(DeviceContext& ctx, SceneDrawer& drawer, const F
   std::vector<scene::Bounds> casters(scene.instances.size());
   for (size_t i = 0; i < casters.size(); ++i) casters[i] = scene.instances[i].worldBounds.transformed(fit_.lightView);
 
-  // The maps are read by the previous frame's lit pass; unbind them before writing.
-  ShaderResourceView* none = nullptr;
-  ctx.PSSetShaderResources(0, 1, &none);
+  // The maps (t0; with accel t1 too) are read by the previous frame's lit pass; unbind them before writing.
+  ShaderResourceView* none[2] = {};
+  ctx.PSSetShaderResources(0, 2, none);
   ctx.RSSetState(rasterizer_.get());
   ctx.OMSetDepthStencilState(nullptr, 0);
   if (settings_.storage == Storage::Atlas) {
@@ -196,9 +206,12 @@ void CsmTechnique::DrawCascades(DeviceContext& ctx, SceneDrawer& drawer, const F
 
 void CsmTechnique::BindLighting(DeviceContext& ctx) {
   ctx.PSSetConstantBuffers(2, {constants_.get()});
-  ctx.PSSetShaderResources(0, {moments_ ? moments_->Srv() : srv_.get()});
+  ctx.PSSetShaderResources(0, {moments_ ? moments_->Srv() : srv_.get(), hpsm_ ? hpsm_->srv() : nullptr});
   ctx.PSSetSamplers(0, {moments_ ? moments_->Sampler() : sampler_.get()});
+  if (hpsm_) hpsm_->BindCounters(ctx);
 }
+
+HpsmCounts CsmTechnique::HpsmDecisions() const { return hpsm_ ? hpsm_->ReadCounters(*device_->GetImmediateContext()) : HpsmCounts{}; }
 
 ShadowStats CsmTechnique::Stats() const {
   ShadowStats s;
@@ -207,6 +220,7 @@ ShadowStats CsmTechnique::Stats() const {
   // The depth (all its samples), and with moment filters the moment array, mips and blur target.
   s.memoryBytes = uint64_t(td.Width) * td.Height * td.ArraySize * td.SampleDesc.Count * 4;
   if (moments_) s.memoryBytes += moments_->MemoryBytes();
+  if (hpsm_) s.memoryBytes += hpsm_->memoryBytes();
   for (uint64_t t : cascadeTriangles_) s.trianglesSubmitted += t;
   return s;
 }

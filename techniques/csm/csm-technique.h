@@ -29,6 +29,7 @@
 #include <memory>
 
 #include "cascade-fit.h"
+#include "hpsm-maps.h"
 #include "moments/moment-maps.h"
 #include "pcf-params.h"
 #include <sp/tech/technique.h>
@@ -54,6 +55,7 @@ struct CsmSettings {
   int depthBias = 100;
   float slopeBias = 2.0f;
   float normalOffset = 1.0f;  // texels of the selected cascade
+  HpsmSettings hpsm;          // accel (comparison filters; sdsm leaves it at none)
 };
 
 std::vector<ParamSpec> CsmParams();
@@ -68,7 +70,7 @@ struct CascadeRegion {
   uint32_t x = 0, y = 0;  // top-left texel of its region in the slice
 };
 
-class CsmTechnique final : public Technique {
+class CsmTechnique final : public Technique, public HpsmCounterSource {
  public:
   std::string Name() const override { return "csm"; }
   std::vector<ParamSpec> Params() const override { return CsmParams(); }
@@ -81,6 +83,7 @@ class CsmTechnique final : public Technique {
   void BindLighting(DeviceContext& ctx) override;
   ShadowStats Stats() const override;
   std::vector<ShadowLayer> Layers() const override;
+  HpsmCounts HpsmDecisions() const override;
 
   // For tests and debug views.
   const CsmSettings& settings() const { return settings_; }
@@ -111,6 +114,8 @@ class CsmTechnique final : public Technique {
   std::unique_ptr<MomentMaps> moments_;
   Ref<ShaderResourceView> depthSrv_;  // map_ as MomentMaps::Convert reads it
   std::vector<float> blurRadii_;
+  Device* device_ = nullptr;
+  std::unique_ptr<HpsmMaps> hpsm_;  // accel: built from every slice after the cascades
 };
 
 }  // namespace sp::tech::csm

@@ -150,6 +150,28 @@ TEST(BenchCrossBackend, MetricsAreIdenticalOnBothBackendsAndValidationIsClean) {
   EXPECT_EQ(j["params"]["depth_bias"], "200") << "defaults are recorded too";
 }
 
+// An accelerated filter's decisions are recorded (fractions summing to 1), and only for it, on
+// both backends.
+TEST(BenchHpsm, RecordsTheDecisionFractionsOfAnAcceleratedFilter) {
+  scene::Scene s = scene::MakeBuiltinScene("default");
+  eval::ReferenceCache cache(s, CacheDir());
+  for (Backend backend : {Backend::Vulkan, Backend::OpenGL}) {
+    bench::RunSpec spec = Spec(s, nullptr, backend);
+    spec.frames = 2;
+    spec.validate = true;
+    spec.params = {{"resolution", "1024"}, {"filter", "box"}, {"kernel", "5"}, {"slope_bias", "6"}, {"accel", "hpsm"}};
+    bench::RunResult r = bench::RunOne(spec, cache);
+    EXPECT_EQ(r.validationErrors, 0u) << BackendName(backend);
+    ASSERT_EQ(r.hpsmDecisions.size(), 3u) << BackendName(backend);
+    EXPECT_NEAR(r.hpsmDecisions["minmax"] + r.hpsmDecisions["plane"] + r.hpsmDecisions["filtered"], 1.0, 1e-9);
+    EXPECT_GT(r.hpsmDecisions["plane"], 0.5) << "the default scene's floor is planar";
+    EXPECT_TRUE(bench::RunToJson(r, {})["metrics"].contains("hpsm_decisions"));
+    spec.params["accel"] = "none";
+    bench::RunResult plain = bench::RunOne(spec, cache);
+    EXPECT_TRUE(plain.hpsmDecisions.empty());
+    EXPECT_FALSE(bench::RunToJson(plain, {})["metrics"].contains("hpsm_decisions"));
+  }
+}
 class BenchFlicker : public ::testing::TestWithParam<Backend> {};
 
 TEST_P(BenchFlicker, StaticCameraGivesZero) {
