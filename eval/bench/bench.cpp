@@ -123,6 +123,13 @@ void ValidateBenchOptions(const BenchOptions& o) {
     throw std::invalid_argument("--triangles " + std::to_string(o.triangles) + " is above the limit of " + std::to_string(scene::kMaxTargetTriangles));
   for (float g : o.lightGammas)
     if (!(g >= 0.0f && g <= 180.0f)) throw std::invalid_argument("--light-gamma values are degrees in [0, 180] (got " + std::to_string(g) + ")");
+  if (o.lightSize) {
+    scene::Scene probe;
+    probe.name = "(any)";
+    SetLightSize(probe, *o.lightSize);  // throws for a bad value before anything loads
+  }
+  if (o.lightSamples < 1 || o.lightSamples > 65535)
+    throw std::invalid_argument("--light-samples must be in 1..65535 (got " + std::to_string(o.lightSamples) + ")");
   if (o.techniques.empty()) throw std::invalid_argument("no technique given");
   if (o.backends.empty()) throw std::invalid_argument("no backend given");
   if (o.frames < 1) throw std::invalid_argument("--frames must be at least 1");
@@ -182,6 +189,7 @@ nlohmann::json RunToJson(const RunResult& r, const std::map<std::string, std::st
         {"flicker_pixels", r.flicker.pixels},
         {"flicker_unmatched_pixels", r.flicker.unmatched},
         {"reference_epsilon", r.referenceEpsilon},
+        {"light_size", r.lightSize},
         {"warmup_frames_dropped", r.frames > kWarmupFrames ? kWarmupFrames : 0u},
         {"disjoint_frames", r.disjointFrames},
         {"validation_enabled", r.validationEnabled},
@@ -189,6 +197,7 @@ nlohmann::json RunToJson(const RunResult& r, const std::map<std::string, std::st
   };
   // Local-light techniques are judged on one local light (index into the scene's point lights, then spot lights).
   if (r.judgedLocalLight >= 0) run["checks"]["judged_local_light"] = r.judgedLocalLight;
+  if (r.lightSamples) run["checks"]["reference_light_samples"] = r.lightSamples;
   // A judged point light: misclassification within the band around its cube-face edges and away
   // from it (docs/local-lights.md, "Seam metric").
   if (r.seamBand > 0) {
@@ -204,6 +213,17 @@ nlohmann::json RunToJson(const RunResult& r, const std::map<std::string, std::st
   if (!r.lastValidationError.empty()) run["checks"]["last_validation_error"] = r.lastValidationError;
   if (!images.empty()) run["images"] = images;
   return run;
+}
+
+void SetLightSize(scene::Scene& scene, float size) {
+  if (!std::isfinite(size) || size < 0.0f)
+    throw std::invalid_argument("--light-size must be a finite number >= 0 (got " + std::to_string(size) + ") for scene '" + scene.name + "'");
+  if (!(size < 180.0f))
+    throw std::invalid_argument("--light-size " + std::to_string(size) + " is the directional light's angular diameter in degrees, which must be below 180 (scene '" +
+                                scene.name + "')");
+  scene.light.angularDiameterDegrees = size;
+  for (scene::PointLight& l : scene.pointLights) l.radius = size;
+  for (scene::SpotLight& l : scene.spotLights) l.radius = size;
 }
 
 glm::vec3 LightAtGamma(const glm::vec3& viewForward, float gammaDegrees) {
@@ -238,6 +258,7 @@ nlohmann::json RunBench(const BenchOptions& o, const Progress& progress) {
     if (sc.name.empty()) sc.name = fs::path(name).stem().string();
     if (sc.cameraPaths.empty()) sc.cameraPaths = scene::CameraPathsFor(sc);
     sc.cameraPath(o.path);  // throws listing the scene's paths
+    if (o.lightSize) SetLightSize(sc, *o.lightSize);
     if (o.lightGammas.empty()) {
       scenes.push_back(std::move(sc));
       continue;
@@ -256,7 +277,9 @@ nlohmann::json RunBench(const BenchOptions& o, const Progress& progress) {
     const scene::Scene& sc = scenes[si];
     if (progress) progress("scene " + std::to_string(si + 1) + "/" + std::to_string(scenes.size()) + ": " + sc.name);
     const scene::CameraPath& path = sc.cameraPath(o.path);
-    eval::ReferenceCache cache(sc, ReferenceCacheDir(o));
+    eval::ReferenceOptions ro;
+    ro.lightSamples = o.lightSamples;
+    eval::ReferenceCache cache(sc, ReferenceCacheDir(o), ro);
     std::map<int, std::string> referenceImages;
     for (size_t ti = 0; ti < o.techniques.size(); ++ti)
       for (const auto& set : sets) {

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <mutex>
 #include <sstream>
@@ -61,27 +62,30 @@ ReferenceLight ReferenceLight::FromScene(const scene::DirectionalLight& light) {
   ReferenceLight l;
   l.type = Directional;
   l.direction = light.direction;
+  l.size = light.angularDiameterDegrees;
   return l;
 }
 
-ReferenceLight ReferenceLight::MakePoint(const glm::vec3& position) {
+ReferenceLight ReferenceLight::MakePoint(const glm::vec3& position, float radius) {
   ReferenceLight l;
   l.type = Point;
   l.position = position;
+  l.size = radius;
   return l;
 }
 
-ReferenceLight ReferenceLight::MakeSpot(const glm::vec3& position, const glm::vec3& direction, float cosHalfAngle) {
+ReferenceLight ReferenceLight::MakeSpot(const glm::vec3& position, const glm::vec3& direction, float cosHalfAngle, float radius) {
   ReferenceLight l;
   l.type = Spot;
   l.position = position;
   l.direction = direction;
   l.spotCosHalfAngle = cosHalfAngle;
+  l.size = radius;
   return l;
 }
 
 void detail::ValidateVisibilityInputs(const char* who, const glm::vec3* positions, const glm::vec3* normals,
-                                      const uint8_t* valid, size_t count, const ReferenceLight& light, const uint8_t* out) {
+                                      const uint8_t* valid, size_t count, const ReferenceLight& light, const void* out) {
   const std::string w = std::string(who) + ": ";
   if (count == 0) return;
   if (!positions || !normals || !out) throw std::runtime_error(w + "positions, normals and out must not be null");
@@ -93,6 +97,11 @@ void detail::ValidateVisibilityInputs(const char* who, const glm::vec3* position
     throw std::runtime_error(w + "light position " + Str(light.position) + " is not finite");
   if (light.type == ReferenceLight::Spot && !std::isfinite(light.spotCosHalfAngle))
     throw std::runtime_error(w + "spotCosHalfAngle is not finite");
+  if (!std::isfinite(light.size) || light.size < 0.0f)
+    throw std::runtime_error(w + "light size " + std::to_string(light.size) + " is negative or not finite");
+  if (light.type == ReferenceLight::Directional && !(light.size < 180.0f))
+    throw std::runtime_error(w + "directional light angular diameter " + std::to_string(light.size) +
+                             " degrees is not below 180");
   for (size_t i = 0; i < count; ++i) {
     if (valid && !valid[i]) continue;
     if (!Finite(positions[i]))
@@ -123,6 +132,8 @@ struct ReferenceTracer::Impl {
   float scale = 0, epsilon = 0;
   size_t triangles = 0;
   unsigned threads = 1;
+  unsigned samples = 1;
+  uint64_t seed = 0;
   mutable std::atomic<uint64_t> traced{0};
   mutable std::mutex errorMutex;
   mutable std::string error;  // the first message Embree reported since the last Check
@@ -220,6 +231,11 @@ ReferenceTracer::ReferenceTracer(const scene::Scene& scene, const ReferenceOptio
                                  " but the mesh has " + std::to_string(mesh.vertices.size()) + " vertices");
   }
 
+  if (options.lightSamples < 1 || options.lightSamples > 65535)
+    throw std::runtime_error(where + "lightSamples " + std::to_string(options.lightSamples) + " is outside 1..65535");
+  I.samples = options.lightSamples;
+  I.seed = options.seed;
+
   I.scale = ReferenceSceneScale(scene);
   I.epsilon = options.relativeEpsilon * I.scale;
   I.threads = options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());
@@ -308,6 +324,9 @@ void ReferenceTracer::Visibility(const glm::vec3* positions, const glm::vec3* no
                                  const ReferenceLight& light, uint8_t* out) const {
   if (count == 0) return;
   detail::ValidateVisibilityInputs("ReferenceTracer::Visibility", positions, normals, valid, count, light, out);
+  if (light.IsArea())
+    throw std::runtime_error("ReferenceTracer::Visibility: the light has size " + std::to_string(light.size) +
+                             ", an area light, whose visibility is fractional: use the float overload");
   const Impl& I = *impl_;
   const float eps = I.epsilon;
   glm::vec3 axis(0);
@@ -393,6 +412,197 @@ void ReferenceTracer::Visibility(const glm::vec3* positions, const glm::vec3* no
   for (std::thread& t : pool) t.join();
   I.traced += rayCount.load();
   I.Check("tracing shadow rays");
+}
+
+
+unsigned ReferenceTracer::SamplesFor(const ReferenceLight& light) const { return light.IsArea() ? impl_->samples : 1u; }
+
+void ReferenceTracer::Visibility(const glm::vec3* positions, const glm::vec3* normals, const uint8_t* valid, size_t count,
+                                 const ReferenceLight& light, float* out) const {
+  if (count == 0) return;
+  detail::ValidateVisibilityInputs("ReferenceTracer::Visibility", positions, normals, valid, count, light, out);
+  std::vector<uint16_t> seen(count, 0);
+  VisibleSamples(positions, normals, valid, count, light, seen.data());
+  const float n = float(SamplesFor(light));
+  for (size_t i = 0; i < count; ++i)
+    if (!valid || valid[i]) out[i] = float(seen[i]) / n;
+}
+
+namespace {
+
+uint64_t SplitMix(uint64_t z) {
+  z += 0x9e3779b97f4a7c15ull;
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+  return z ^ (z >> 31);
+}
+
+uint64_t Bits(const glm::vec3& v) {
+  uint32_t b[3];
+  std::memcpy(b, &v, sizeof b);
+  return SplitMix(SplitMix(SplitMix(b[0]) ^ b[1]) ^ b[2]);
+}
+
+double RadicalInverse2(uint32_t i) {
+  i = (i << 16) | (i >> 16);
+  i = ((i & 0x00ff00ffu) << 8) | ((i & 0xff00ff00u) >> 8);
+  i = ((i & 0x0f0f0f0fu) << 4) | ((i & 0xf0f0f0f0u) >> 4);
+  i = ((i & 0x33333333u) << 2) | ((i & 0xccccccccu) >> 2);
+  i = ((i & 0x55555555u) << 1) | ((i & 0xaaaaaaaau) >> 1);
+  return double(i) * 0x1p-32;
+}
+
+// Shirley and Chiu's concentric map of the unit square onto the unit disc: area preserving and of
+// low distortion, so the square's even spread of points stays even on the disc.
+glm::dvec2 ConcentricDisc(double u, double v) {
+  double a = 2.0 * u - 1.0, b = 2.0 * v - 1.0;
+  if (a == 0.0 && b == 0.0) return {0.0, 0.0};
+  constexpr double kQuarterPi = 0.78539816339744830962;
+  if (std::abs(a) > std::abs(b)) return a * glm::dvec2(std::cos(kQuarterPi * b / a), std::sin(kQuarterPi * b / a));
+  return b * glm::dvec2(std::sin(kQuarterPi * a / b), std::cos(kQuarterPi * a / b));
+}
+
+// The cone of directions from a point to an area light: its axis and 1 - cos(half angle), with
+// the sphere's centre distance and radius for where a ray reaches the light (directional: none).
+struct LightCone {
+  glm::dvec3 axis, t1, t2;
+  double oneMinusCos = 0;
+  double distance = 0, radius = 0;
+};
+
+// Directions uniform in the cone's solid angle: a disc point at radius r maps to 1 - cos(theta) =
+// r^2 (1 - cos(half angle)), which is uniform in solid angle because the disc map keeps area.
+glm::dvec3 ConeDirection(const LightCone& c, double u, double v, double* cosTheta) {
+  glm::dvec2 d = ConcentricDisc(u, v);
+  double r2 = glm::dot(d, d);
+  double m = r2 * c.oneMinusCos;  // 1 - cos(theta), exact for tiny cones where cos rounds to 1
+  *cosTheta = 1.0 - m;
+  if (r2 == 0.0) return c.axis;
+  double sinTheta = std::sqrt(std::max(0.0, m * (2.0 - m)));
+  return *cosTheta * c.axis + (sinTheta / std::sqrt(r2)) * (d.x * c.t1 + d.y * c.t2);
+}
+
+}  // namespace
+
+// Area lights: each pixel casts lightSamples rays over the light's cone, the n points of a
+// Hammersley set ((k + 1/2) / n, radical inverse of k) shifted modulo 1 by a per-pixel offset
+// (Cranley-Patterson rotation, which keeps the estimate unbiased), carried onto the disc by the
+// concentric map and onto the cone by equal solid angle. A straight shadow edge across the disc
+// then errs by O(log n / n) rather than a random set's O(1/sqrt(n)). The offset hashes the seed
+// with the pixel's position and normal, so results are the same on every run, thread count and
+// pixel order. Rays go to rtcOccluded1M in streams of whole pixels (each pixel's rays share an
+// origin and are coherent). Measured rays/s: docs/lab.md, "Area lights in the reference".
+void ReferenceTracer::VisibleSamples(const glm::vec3* positions, const glm::vec3* normals, const uint8_t* valid, size_t count,
+                                     const ReferenceLight& light, uint16_t* out) const {
+  if (count == 0) return;
+  detail::ValidateVisibilityInputs("ReferenceTracer::VisibleSamples", positions, normals, valid, count, light, out);
+  if (!light.IsArea()) {
+    std::vector<uint8_t> hard(count, 0);
+    Visibility(positions, normals, valid, count, light, hard.data());
+    for (size_t i = 0; i < count; ++i)
+      if (!valid || valid[i]) out[i] = hard[i];
+    return;
+  }
+  const Impl& I = *impl_;
+  const float eps = I.epsilon;
+  const unsigned n = I.samples;
+  glm::dvec3 spotAxis(0);
+  if (light.type != ReferenceLight::Point) spotAxis = glm::normalize(glm::dvec3(light.direction));
+  const double sunOneMinusCos = 2.0 * std::pow(std::sin(glm::radians(double(light.size)) / 4.0), 2.0);
+
+  const size_t pixelsPerChunk = std::max<size_t>(1, 4096 / n);
+  const size_t chunks = (count + pixelsPerChunk - 1) / pixelsPerChunk;
+  std::atomic<size_t> nextChunk{0};
+  std::atomic<uint64_t> rayCount{0};
+  auto work = [&] {
+    std::vector<RTCRay> rays(pixelsPerChunk * n);
+    std::vector<uint32_t> owner(pixelsPerChunk * n);
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    uint64_t cast = 0;
+    for (size_t c; (c = nextChunk.fetch_add(1)) < chunks;) {
+      const size_t begin = c * pixelsPerChunk, end = std::min(count, begin + pixelsPerChunk);
+      unsigned m = 0;
+      for (size_t i = begin; i < end; ++i) {
+        if (valid && !valid[i]) continue;
+        out[i] = 0;
+        const glm::vec3 p = positions[i];
+        const glm::vec3 normal = glm::normalize(normals[i]);
+        const glm::vec3 origin = p + normal * eps;
+        LightCone cone;
+        if (light.type == ReferenceLight::Directional) {
+          cone.axis = -spotAxis;
+          cone.oneMinusCos = sunOneMinusCos;
+        } else {
+          glm::dvec3 toCentre = glm::dvec3(light.position) - glm::dvec3(origin);
+          cone.distance = glm::length(toCentre);
+          cone.radius = light.size;
+          // Inside the sphere (or within epsilon of it) the whole light is seen, as a hard light
+          // within epsilon of the surface is.
+          if (!(cone.distance > cone.radius + eps)) {
+            out[i] = uint16_t(n);
+            continue;
+          }
+          cone.axis = toCentre / cone.distance;
+          if (light.type == ReferenceLight::Spot &&
+              glm::dot(glm::normalize(glm::dvec3(light.position) - glm::dvec3(p)), -spotAxis) < light.spotCosHalfAngle)
+            continue;
+          double s = cone.radius / cone.distance;
+          cone.oneMinusCos = s * s / (1.0 + std::sqrt(1.0 - s * s));
+        }
+        // Duff et al.'s branchless orthonormal basis around the axis.
+        const glm::dvec3& a = cone.axis;
+        double sign = std::copysign(1.0, a.z), q = -1.0 / (sign + a.z), r = a.x * a.y * q;
+        cone.t1 = {1.0 + sign * a.x * a.x * q, sign * r, -sign * a.x};
+        cone.t2 = {r, sign + a.y * a.y * q, -a.y};
+        const uint64_t h = SplitMix(I.seed ^ Bits(p) ^ SplitMix(Bits(normal)));
+        const double su = double(h >> 32) * 0x1p-32, sv = double(h & 0xffffffffu) * 0x1p-32;
+        unsigned seen = 0;
+        for (unsigned k = 0; k < n; ++k) {
+          double u = (k + 0.5) / n + su, v = RadicalInverse2(k) + sv;
+          double cosTheta;
+          glm::dvec3 d = ConeDirection(cone, u - std::floor(u), v - std::floor(v), &cosTheta);
+          if (!(glm::dot(glm::dvec3(normal), d) > 0.0)) continue;  // below the surface: its own shadow
+          float tfar = std::numeric_limits<float>::infinity();
+          if (light.type != ReferenceLight::Directional) {
+            // Up to the sphere's near side, less epsilon as for a hard light.
+            double sin2 = 1.0 - cosTheta * cosTheta;
+            double t = cone.distance * cosTheta - std::sqrt(std::max(0.0, cone.radius * cone.radius - cone.distance * cone.distance * sin2));
+            tfar = float(t) - eps;
+            if (!(tfar > eps)) {
+              ++seen;
+              continue;
+            }
+          }
+          RTCRay& ray = rays[m];
+          ray.org_x = origin.x, ray.org_y = origin.y, ray.org_z = origin.z;
+          ray.dir_x = float(d.x), ray.dir_y = float(d.y), ray.dir_z = float(d.z);
+          ray.tnear = eps;
+          ray.tfar = tfar;
+          ray.time = 0.0f;
+          ray.mask = 0xFFFFFFFFu;
+          ray.id = m;
+          ray.flags = 0;
+          owner[m++] = uint32_t(i - begin);
+        }
+        out[i] = uint16_t(seen);
+      }
+      if (m == 0) continue;
+      rtcOccluded1M(I.top, &context, rays.data(), m, sizeof(RTCRay));
+      for (unsigned k = 0; k < m; ++k)
+        if (rays[k].tfar >= 0.0f) ++out[begin + owner[k]];
+      cast += m;
+    }
+    rayCount += cast;
+  };
+  const unsigned threads = unsigned(std::min<size_t>(I.threads, chunks));
+  std::vector<std::thread> pool;
+  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work);
+  work();
+  for (std::thread& t : pool) t.join();
+  I.traced += rayCount.load();
+  I.Check("tracing area-light shadow rays");
 }
 
 }  // namespace sp::eval
