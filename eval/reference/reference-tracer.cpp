@@ -443,43 +443,46 @@ uint64_t Bits(const glm::vec3& v) {
   return SplitMix(SplitMix(SplitMix(b[0]) ^ b[1]) ^ b[2]);
 }
 
-double RadicalInverse2(uint32_t i) {
+float RadicalInverse2(uint32_t i) {
   i = (i << 16) | (i >> 16);
   i = ((i & 0x00ff00ffu) << 8) | ((i & 0xff00ff00u) >> 8);
   i = ((i & 0x0f0f0f0fu) << 4) | ((i & 0xf0f0f0f0u) >> 4);
   i = ((i & 0x33333333u) << 2) | ((i & 0xccccccccu) >> 2);
   i = ((i & 0x55555555u) << 1) | ((i & 0xaaaaaaaau) >> 1);
-  return double(i) * 0x1p-32;
+  return float(i >> 8) * 0x1p-24f;
 }
 
 // Shirley and Chiu's concentric map of the unit square onto the unit disc: area preserving and of
 // low distortion, so the square's even spread of points stays even on the disc.
-glm::dvec2 ConcentricDisc(double u, double v) {
-  double a = 2.0 * u - 1.0, b = 2.0 * v - 1.0;
-  if (a == 0.0 && b == 0.0) return {0.0, 0.0};
-  constexpr double kQuarterPi = 0.78539816339744830962;
-  if (std::abs(a) > std::abs(b)) return a * glm::dvec2(std::cos(kQuarterPi * b / a), std::sin(kQuarterPi * b / a));
-  return b * glm::dvec2(std::sin(kQuarterPi * a / b), std::cos(kQuarterPi * a / b));
+glm::vec2 ConcentricDisc(float u, float v) {
+  float a = 2.0f * u - 1.0f, b = 2.0f * v - 1.0f;
+  if (a == 0.0f && b == 0.0f) return {0.0f, 0.0f};
+  constexpr float kQuarterPi = 0.785398163f;
+  if (std::abs(a) > std::abs(b)) return a * glm::vec2(std::cos(kQuarterPi * b / a), std::sin(kQuarterPi * b / a));
+  return b * glm::vec2(std::sin(kQuarterPi * a / b), std::cos(kQuarterPi * a / b));
 }
 
 // The cone of directions from a point to an area light: its axis and 1 - cos(half angle), with
 // the sphere's centre distance and radius for where a ray reaches the light (directional: none).
+// Per-sample work is in float, which the measured throughput needed (it was as slow as the
+// tracing in double); 1 - cos is carried as such, never as cos, so tiny cones keep their size.
 struct LightCone {
-  glm::dvec3 axis, t1, t2;
-  double oneMinusCos = 0;
-  double distance = 0, radius = 0;
+  glm::vec3 axis, t1, t2;
+  float oneMinusCos = 0;
+  float distance = 0, radius = 0;
 };
 
 // Directions uniform in the cone's solid angle: a disc point at radius r maps to 1 - cos(theta) =
 // r^2 (1 - cos(half angle)), which is uniform in solid angle because the disc map keeps area.
-glm::dvec3 ConeDirection(const LightCone& c, double u, double v, double* cosTheta) {
-  glm::dvec2 d = ConcentricDisc(u, v);
-  double r2 = glm::dot(d, d);
-  double m = r2 * c.oneMinusCos;  // 1 - cos(theta), exact for tiny cones where cos rounds to 1
-  *cosTheta = 1.0 - m;
-  if (r2 == 0.0) return c.axis;
-  double sinTheta = std::sqrt(std::max(0.0, m * (2.0 - m)));
-  return *cosTheta * c.axis + (sinTheta / std::sqrt(r2)) * (d.x * c.t1 + d.y * c.t2);
+// Returns the direction and sets *oneMinusCosTheta.
+glm::vec3 ConeDirection(const LightCone& c, float u, float v, float* oneMinusCosTheta) {
+  glm::vec2 d = ConcentricDisc(u, v);
+  float r2 = glm::dot(d, d);
+  float m = r2 * c.oneMinusCos;
+  *oneMinusCosTheta = m;
+  if (r2 == 0.0f) return c.axis;
+  float sinTheta = std::sqrt(std::max(0.0f, m * (2.0f - m)));
+  return (1.0f - m) * c.axis + (sinTheta / std::sqrt(r2)) * (d.x * c.t1 + d.y * c.t2);
 }
 
 }  // namespace
@@ -520,10 +523,10 @@ void ReferenceTracer::VisibleSamples(const glm::vec3* positions, const glm::vec3
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-    uint64_t cast = 0;
+    uint64_t total = 0;
     for (size_t c; (c = nextChunk.fetch_add(1)) < chunks;) {
       const size_t begin = c * pixelsPerChunk, end = std::min(count, begin + pixelsPerChunk);
-      unsigned m = 0;
+      unsigned cast = 0;
       for (size_t i = begin; i < end; ++i) {
         if (valid && !valid[i]) continue;
         out[i] = 0;
@@ -531,70 +534,74 @@ void ReferenceTracer::VisibleSamples(const glm::vec3* positions, const glm::vec3
         const glm::vec3 normal = glm::normalize(normals[i]);
         const glm::vec3 origin = p + normal * eps;
         LightCone cone;
+        glm::dvec3 axis;
+        double oneMinusCos;
         if (light.type == ReferenceLight::Directional) {
-          cone.axis = -spotAxis;
-          cone.oneMinusCos = sunOneMinusCos;
+          axis = -spotAxis;
+          oneMinusCos = sunOneMinusCos;
         } else {
           glm::dvec3 toCentre = glm::dvec3(light.position) - glm::dvec3(origin);
-          cone.distance = glm::length(toCentre);
-          cone.radius = light.size;
+          double distance = glm::length(toCentre);
           // Inside the sphere (or within epsilon of it) the whole light is seen, as a hard light
           // within epsilon of the surface is.
-          if (!(cone.distance > cone.radius + eps)) {
+          if (!(distance > double(light.size) + eps)) {
             out[i] = uint16_t(n);
             continue;
           }
-          cone.axis = toCentre / cone.distance;
+          axis = toCentre / distance;
           if (light.type == ReferenceLight::Spot &&
               glm::dot(glm::normalize(glm::dvec3(light.position) - glm::dvec3(p)), -spotAxis) < light.spotCosHalfAngle)
             continue;
-          double s = cone.radius / cone.distance;
-          cone.oneMinusCos = s * s / (1.0 + std::sqrt(1.0 - s * s));
+          double s = double(light.size) / distance;
+          oneMinusCos = s * s / (1.0 + std::sqrt(1.0 - s * s));
+          cone.distance = float(distance);
+          cone.radius = light.size;
         }
         // Duff et al.'s branchless orthonormal basis around the axis.
-        const glm::dvec3& a = cone.axis;
-        double sign = std::copysign(1.0, a.z), q = -1.0 / (sign + a.z), r = a.x * a.y * q;
-        cone.t1 = {1.0 + sign * a.x * a.x * q, sign * r, -sign * a.x};
-        cone.t2 = {r, sign + a.y * a.y * q, -a.y};
+        double sign = std::copysign(1.0, axis.z), q = -1.0 / (sign + axis.z), r = axis.x * axis.y * q;
+        cone.axis = glm::vec3(axis);
+        cone.t1 = glm::vec3(glm::dvec3(1.0 + sign * axis.x * axis.x * q, sign * r, -sign * axis.x));
+        cone.t2 = glm::vec3(glm::dvec3(r, sign + axis.y * axis.y * q, -axis.y));
+        cone.oneMinusCos = float(oneMinusCos);
         const uint64_t h = SplitMix(I.seed ^ Bits(p) ^ SplitMix(Bits(normal)));
-        const double su = double(h >> 32) * 0x1p-32, sv = double(h & 0xffffffffu) * 0x1p-32;
+        const float su = float(h >> 40) * 0x1p-24f, sv = float((h >> 8) & 0xffffffu) * 0x1p-24f;
         unsigned seen = 0;
         for (unsigned k = 0; k < n; ++k) {
-          double u = (k + 0.5) / n + su, v = RadicalInverse2(k) + sv;
-          double cosTheta;
-          glm::dvec3 d = ConeDirection(cone, u - std::floor(u), v - std::floor(v), &cosTheta);
-          if (!(glm::dot(glm::dvec3(normal), d) > 0.0)) continue;  // below the surface: its own shadow
+          float u = (float(k) + 0.5f) / float(n) + su, v = RadicalInverse2(k) + sv;
+          float m;
+          glm::vec3 d = ConeDirection(cone, u >= 1.0f ? u - 1.0f : u, v >= 1.0f ? v - 1.0f : v, &m);
+          if (!(glm::dot(normal, d) > 0.0f)) continue;  // below the surface: its own shadow
           float tfar = std::numeric_limits<float>::infinity();
           if (light.type != ReferenceLight::Directional) {
             // Up to the sphere's near side, less epsilon as for a hard light.
-            double sin2 = 1.0 - cosTheta * cosTheta;
-            double t = cone.distance * cosTheta - std::sqrt(std::max(0.0, cone.radius * cone.radius - cone.distance * cone.distance * sin2));
-            tfar = float(t) - eps;
+            float sin2 = m * (2.0f - m);
+            float t = cone.distance * (1.0f - m) - std::sqrt(std::max(0.0f, cone.radius * cone.radius - cone.distance * cone.distance * sin2));
+            tfar = t - eps;
             if (!(tfar > eps)) {
               ++seen;
               continue;
             }
           }
-          RTCRay& ray = rays[m];
+          RTCRay& ray = rays[cast];
           ray.org_x = origin.x, ray.org_y = origin.y, ray.org_z = origin.z;
-          ray.dir_x = float(d.x), ray.dir_y = float(d.y), ray.dir_z = float(d.z);
+          ray.dir_x = d.x, ray.dir_y = d.y, ray.dir_z = d.z;
           ray.tnear = eps;
           ray.tfar = tfar;
           ray.time = 0.0f;
           ray.mask = 0xFFFFFFFFu;
-          ray.id = m;
+          ray.id = cast;
           ray.flags = 0;
-          owner[m++] = uint32_t(i - begin);
+          owner[cast++] = uint32_t(i - begin);
         }
         out[i] = uint16_t(seen);
       }
-      if (m == 0) continue;
-      rtcOccluded1M(I.top, &context, rays.data(), m, sizeof(RTCRay));
-      for (unsigned k = 0; k < m; ++k)
+      if (cast == 0) continue;
+      rtcOccluded1M(I.top, &context, rays.data(), cast, sizeof(RTCRay));
+      for (unsigned k = 0; k < cast; ++k)
         if (rays[k].tfar >= 0.0f) ++out[begin + owner[k]];
-      cast += m;
+      total += cast;
     }
-    rayCount += cast;
+    rayCount += total;
   };
   const unsigned threads = unsigned(std::min<size_t>(I.threads, chunks));
   std::vector<std::thread> pool;
