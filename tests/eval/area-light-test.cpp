@@ -375,7 +375,8 @@ TEST(AreaLightReference, BadSizesAndSampleCountsAreNamed) {
 
 // Not a check: the throughput figures docs/lab.md quotes (run with
 // --gtest_also_run_disabled_tests --gtest_filter=*Throughput). One thread, the default scene's
-// floor under its own light, hard and with a 0.53 and a 3 degree sun; best of 3 calls.
+// floor under its own light, hard and with a 0.53 and a 3 degree sun; best of 9 calls (the
+// development machine is shared: the best call is the one least disturbed).
 TEST(AreaLightReference, DISABLED_Throughput) {
   scene::Scene s = Columns();
   Pixels px = Floor(128, 0.08f);
@@ -386,7 +387,7 @@ TEST(AreaLightReference, DISABLED_Throughput) {
     ReferenceLight light = ReferenceLight::FromScene(s.light);
     light.size = size;
     double best = 0;
-    for (int k = 0; k < 3; ++k) {
+    for (int k = 0; k < 9; ++k) {
       uint64_t before = tracer.TracedRays();
       auto t0 = std::chrono::steady_clock::now();
       Trace(tracer, px, light);
