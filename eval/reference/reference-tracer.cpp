@@ -56,6 +56,28 @@ bool NeedsBaking(const glm::mat4& m) {
   return !(std::abs(glm::determinant(a)) > 1e-6f * volume);
 }
 
+// A shadow ray from origin along dir, occluded by anything in (tnear, tfar).
+void SetShadowRay(RTCRay& r, const glm::vec3& origin, const glm::vec3& dir, float tnear, float tfar, unsigned id) {
+  r.org_x = origin.x, r.org_y = origin.y, r.org_z = origin.z;
+  r.dir_x = dir.x, r.dir_y = dir.y, r.dir_z = dir.z;
+  r.tnear = tnear;
+  r.tfar = tfar;
+  r.time = 0.0f;
+  r.mask = 0xFFFFFFFFu;
+  r.id = id;
+  r.flags = 0;
+}
+
+// Runs `work` on min(threads, chunks) threads, the calling one included; `work` takes chunks
+// from a shared counter until none is left.
+template <class Work>
+void OnThreads(unsigned threads, size_t chunks, Work&& work) {
+  std::vector<std::thread> pool;
+  for (unsigned t = 1; t < unsigned(std::min<size_t>(threads, chunks)); ++t) pool.emplace_back(work);
+  work();
+  for (std::thread& t : pool) t.join();
+}
+
 }  // namespace
 
 ReferenceLight ReferenceLight::FromScene(const scene::DirectionalLight& light) {
@@ -387,15 +409,7 @@ void ReferenceTracer::Visibility(const glm::vec3* positions, const glm::vec3* no
             continue;
           }
         }
-        RTCRay& r = rays[n];
-        r.org_x = origin.x, r.org_y = origin.y, r.org_z = origin.z;
-        r.dir_x = dir.x, r.dir_y = dir.y, r.dir_z = dir.z;
-        r.tnear = eps;
-        r.tfar = tfar;
-        r.time = 0.0f;
-        r.mask = 0xFFFFFFFFu;
-        r.id = n;
-        r.flags = 0;
+        SetShadowRay(rays[n], origin, dir, eps, tfar, n);
         pixel[n++] = i;
       }
       if (n == 0) continue;
@@ -405,11 +419,7 @@ void ReferenceTracer::Visibility(const glm::vec3* positions, const glm::vec3* no
     }
     rayCount += cast;
   };
-  const unsigned threads = unsigned(std::min<size_t>(I.threads, chunks));
-  std::vector<std::thread> pool;
-  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work);
-  work();
-  for (std::thread& t : pool) t.join();
+  OnThreads(I.threads, chunks, work);
   I.traced += rayCount.load();
   I.Check("tracing shadow rays");
 }
@@ -582,15 +592,7 @@ void ReferenceTracer::VisibleSamples(const glm::vec3* positions, const glm::vec3
               continue;
             }
           }
-          RTCRay& ray = rays[cast];
-          ray.org_x = origin.x, ray.org_y = origin.y, ray.org_z = origin.z;
-          ray.dir_x = d.x, ray.dir_y = d.y, ray.dir_z = d.z;
-          ray.tnear = eps;
-          ray.tfar = tfar;
-          ray.time = 0.0f;
-          ray.mask = 0xFFFFFFFFu;
-          ray.id = cast;
-          ray.flags = 0;
+          SetShadowRay(rays[cast], origin, d, eps, tfar, cast);
           owner[cast++] = uint32_t(i - begin);
         }
         out[i] = uint16_t(seen);
@@ -603,11 +605,7 @@ void ReferenceTracer::VisibleSamples(const glm::vec3* positions, const glm::vec3
     }
     rayCount += total;
   };
-  const unsigned threads = unsigned(std::min<size_t>(I.threads, chunks));
-  std::vector<std::thread> pool;
-  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work);
-  work();
-  for (std::thread& t : pool) t.join();
+  OnThreads(I.threads, chunks, work);
   I.traced += rayCount.load();
   I.Check("tracing area-light shadow rays");
 }
