@@ -1,5 +1,6 @@
 // `shadowport bench` as a library: option checks, the loop over scenes, techniques, parameter
 // sets and backends, the results file and the pictures.
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <fstream>
@@ -138,7 +139,8 @@ void ValidateBenchOptions(const BenchOptions& o) {
     std::unique_ptr<tech::Technique> technique = tech::CreateTechnique(t.name);  // throws listing the names
     for (const auto& [k, v] : o.params)
       if (t.params.count(k)) throw std::invalid_argument("parameter " + k + " is set both in --technique " + text + " and by --param");
-    for (const auto& set : ParamSets(o.params)) tech::ParamValues::Parse(t.name, technique->Params(), RunParams(t, set));
+    for (const auto& set : ParamSets(o.params))
+      tech::ParamValues::Parse(t.name, technique->Params(), MatchLightSize(t.name, technique->Params(), RunParams(t, set), o.lightSize));
   }
 }
 
@@ -226,6 +228,25 @@ void SetLightSize(scene::Scene& scene, float size) {
   for (scene::SpotLight& l : scene.spotLights) l.radius = size;
 }
 
+std::map<std::string, std::string> MatchLightSize(const std::string& technique, const std::vector<tech::ParamSpec>& specs,
+                                                  std::map<std::string, std::string> params, std::optional<float> lightSize) {
+  if (!lightSize) return params;
+  bool has = std::any_of(specs.begin(), specs.end(), [](const tech::ParamSpec& p) { return p.name == "light_size"; });
+  if (!has) return params;
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", double(*lightSize));
+  if (auto given = params.find("light_size"); given != params.end()) {
+    char* end = nullptr;
+    float v = std::strtof(given->second.c_str(), &end);
+    if (end == given->second.c_str() || *end || v != std::strtof(text, nullptr))
+      throw std::invalid_argument("technique '" + technique + "' sets light_size=" + given->second + " but --light-size is " + text +
+                                  ": the technique and the reference would judge different lights");
+    return params;
+  }
+  if (*lightSize > 0.0f) params["light_size"] = text;
+  return params;
+}
+
 glm::vec3 LightAtGamma(const glm::vec3& viewForward, float gammaDegrees) {
   glm::vec3 f = glm::normalize(viewForward);
   // The turn goes towards world down, so at 90 degrees the light comes from above the view axis;
@@ -284,7 +305,8 @@ nlohmann::json RunBench(const BenchOptions& o, const Progress& progress) {
     for (size_t ti = 0; ti < o.techniques.size(); ++ti)
       for (const auto& set : sets) {
         const TechniqueSpec t = ParseTechniqueSpec(o.techniques[ti]);
-        const std::map<std::string, std::string> params = RunParams(t, set);
+        const std::map<std::string, std::string> params =
+            MatchLightSize(t.name, tech::CreateTechnique(t.name)->Params(), RunParams(t, set), o.lightSize);
         // The first backend's picture, which the others' are compared with.
         std::vector<uint8_t> firstColor;
         std::string firstBackend;

@@ -139,6 +139,14 @@ struct BenchOptions {
 // directional angular diameter of 180 degrees or more.
 void SetLightSize(scene::Scene& scene, float size);
 
+// A technique that models the light's size itself (a `light_size` parameter, e.g. csm's
+// filter=pcss, with the same units as --light-size) gets --light-size's value unless its own is
+// given, so it and the reference see the same light. Returns `params` with it filled in; size 0
+// (hard) leaves the technique's default. Throws std::invalid_argument when `params` sets a
+// different light_size, naming both.
+std::map<std::string, std::string> MatchLightSize(const std::string& technique, const std::vector<tech::ParamSpec>& specs,
+                                                  std::map<std::string, std::string> params, std::optional<float> lightSize);
+
 // The light direction at `gammaDegrees` to `viewForward` (see BenchOptions::lightGammas).
 glm::vec3 LightAtGamma(const glm::vec3& viewForward, float gammaDegrees);
 

@@ -373,6 +373,26 @@ TEST(AreaLightReference, BadSizesAndSampleCountsAreNamed) {
   for (const scene::PointLight& l : lit.pointLights) EXPECT_EQ(l.radius, 0.25f);
 }
 
+// A technique with its own light size (PCSS's light_size) is given --light-size's, so technique and
+// reference judge the same light; a contradicting value is refused, naming both.
+TEST(AreaLightBench, TechniquesWithALightSizeParameterGetTheBenchsLightSize) {
+  std::vector<tech::ParamSpec> pcss = {{tech::ParamSpec::Float, "light_size", "", "0.53", 0.01, 20, {}}};
+  std::vector<tech::ParamSpec> other = {{tech::ParamSpec::Int, "resolution", "", "2048", 16, 16384, {}}};
+  using Params = std::map<std::string, std::string>;
+  EXPECT_EQ(bench::MatchLightSize("t", pcss, {}, 2.5f), (Params{{"light_size", "2.5"}}));
+  EXPECT_EQ(bench::MatchLightSize("t", pcss, {}, 0.53f), (Params{{"light_size", "0.53"}}));
+  EXPECT_EQ(bench::MatchLightSize("t", pcss, {}, std::nullopt), Params{});      // no --light-size: the scene's
+  EXPECT_EQ(bench::MatchLightSize("t", pcss, {}, 0.0f), Params{});             // hard: the technique's default
+  EXPECT_EQ(bench::MatchLightSize("t", other, {}, 2.5f), Params{});            // nothing to match
+  EXPECT_EQ(bench::MatchLightSize("t", pcss, {{"light_size", "2.50"}}, 2.5f), (Params{{"light_size", "2.50"}}));
+  try {
+    bench::MatchLightSize("csm", pcss, {{"light_size", "1"}}, 2.5f);
+    ADD_FAILURE() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("technique 'csm' sets light_size=1 but --light-size is 2.5"), std::string::npos) << e.what();
+  }
+}
+
 // Not a check: the throughput figures docs/lab.md quotes (run with
 // --gtest_also_run_disabled_tests --gtest_filter=*Throughput). One thread, the default scene's
 // floor under its own light, hard and with a 0.53 and a 3 degree sun; best of 9 calls (the
