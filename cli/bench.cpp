@@ -14,7 +14,7 @@ namespace sp::cli {
 
 int RunBench(const Args& a) {
   a.expectOnly({"scene", "technique", "backend", "size", "frames", "param", "triangles", "path", "out", "reference-cache", "validate",
-                "light-gamma"});
+                "light-gamma", "light-size", "light-samples"});
   if (!a.positionals().empty()) throw std::invalid_argument("unexpected argument '" + a.positionals()[0] + "'");
   bench::BenchOptions o;
   o.scenes = SplitList(a.get("scene", "default"), "scene");
@@ -41,6 +41,14 @@ int RunBench(const Args& a) {
       if (end == g.c_str() || *end) throw std::invalid_argument("--light-gamma takes degrees (got '" + g + "')");
       o.lightGammas.push_back(v);
     }
+  if (a.has("light-size")) {
+    const std::string t = a.get("light-size");
+    char* end = nullptr;
+    float v = std::strtof(t.c_str(), &end);
+    if (end == t.c_str() || *end) throw std::invalid_argument("--light-size takes a number (degrees for the directional light, world units for local lights; got '" + t + "')");
+    o.lightSize = v;  // range checked by bench::ValidateBenchOptions
+  }
+  if (a.has("light-samples")) o.lightSamples = unsigned(ParseCount(a.get("light-samples"), "light-samples", 1, 65535));
 
   ProgressPrinter progress("bench: ");
   nlohmann::json doc = bench::RunBench(o, progress);

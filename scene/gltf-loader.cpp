@@ -6,6 +6,7 @@
 #include <glm/ext/matrix_transform.hpp>
 #include <glm/ext/scalar_constants.hpp>
 #include <glm/gtc/constants.hpp>
+#include <limits>
 #include <stdexcept>
 #include <tiny_gltf.h>
 
@@ -129,6 +130,7 @@ struct LightData {
   glm::vec3 color{1.0f};  // times intensity
   float range = 0.0f;     // 0: none given
   float inner = 0.0f, outer = 0.0f;
+  float size = 0.0f;  // extras: directional angularDiameterDegrees, point/spot radius; 0 = hard
 };
 
 LightData CheckLight(const Reader& r, const tinygltf::Light& l, const std::string& what) {
@@ -154,6 +156,19 @@ LightData CheckLight(const Reader& r, const tinygltf::Light& l, const std::strin
              " (must be 0 <= inner < outer <= pi/2)");
     d.inner = float(in);
     d.outer = float(out);
+  }
+  // The extension has punctual lights only; a light's size for soft shadows travels in its extras
+  // (scene.h: DirectionalLight::angularDiameterDegrees, PointLight/SpotLight::radius, in world
+  // units, the node's scale not applied).
+  const char* sizeKey = l.type == "directional" ? "angularDiameterDegrees" : "radius";
+  if (l.extras.IsObject() && l.extras.Has(sizeKey)) {
+    const tinygltf::Value& v = l.extras.Get(sizeKey);
+    double size = v.IsNumber() ? v.GetNumberAsDouble() : -1.0;
+    double limit = l.type == "directional" ? 180.0 : std::numeric_limits<double>::infinity();
+    if (!v.IsNumber() || !std::isfinite(size) || size < 0 || size >= limit)
+      r.fail(what + " has extras." + sizeKey + " " + (v.IsNumber() ? std::to_string(size) : std::string("(not a number)")) +
+             (l.type == "directional" ? " (must be degrees in [0, 180))" : " (must be finite and >= 0)"));
+    d.size = float(size);
   }
   return d;
 }
@@ -221,9 +236,9 @@ Scene LoadGltf(const std::filesystem::path& path) {
       glm::vec3 axis = glm::vec3(world * glm::vec4(0, 0, -1, 0));  // lights shine along the node's -z
       if (!(glm::length(axis) > 0)) r.fail("node " + std::to_string(it.node) + " carries light " + std::to_string(li) + " with a degenerate transform");
       axis = glm::normalize(axis);
-      if (d.type == "point") s.pointLights.push_back({position, d.color, d.range});
-      else if (d.type == "spot") s.spotLights.push_back({position, axis, d.color, d.range, d.inner, d.outer});
-      else if (!directionalSet) s.light.direction = axis, directionalSet = true;
+      if (d.type == "point") s.pointLights.push_back({position, d.color, d.range, d.size});
+      else if (d.type == "spot") s.spotLights.push_back({position, axis, d.color, d.range, d.inner, d.outer, d.size});
+      else if (!directionalSet) s.light.direction = axis, s.light.angularDiameterDegrees = d.size, directionalSet = true;
     }
     if (node.mesh < 0) continue;
     if (size_t(node.mesh) >= model.meshes.size()) r.fail("node " + std::to_string(it.node) + " refers to mesh " + std::to_string(node.mesh) + ", which does not exist");

@@ -32,11 +32,13 @@ std::string Describe(const RunSpec& s) {
   return t + " / " + BackendName(s.backend);
 }
 
-// The reference for one lab frame: one visibility byte per pixel (receiving pixels only).
-std::vector<uint8_t> Reference(eval::ReferenceCache& cache, const tech::LabBuffers& lab, const eval::ReferenceLight& light, bool* cached) {
+// The reference for one lab frame: the fraction of the light visible per pixel (receiving pixels
+// only; 0 or 1 for a hard light).
+std::vector<float> Reference(eval::ReferenceCache& cache, const tech::LabBuffers& lab, const eval::ReferenceLight& light, bool* cached) {
   size_t n = lab.size();
   std::vector<glm::vec3> pos(n), nrm(n);
-  std::vector<uint8_t> valid(n), out(n, 0);
+  std::vector<uint8_t> valid(n);
+  std::vector<float> out(n, 0.0f);
   for (size_t i = 0; i < n; ++i) {
     pos[i] = glm::vec3(lab.position[i]);
     nrm[i] = glm::vec3(lab.normal[i]);
@@ -46,8 +48,6 @@ std::vector<uint8_t> Reference(eval::ReferenceCache& cache, const tech::LabBuffe
   *cached = cache.Visibility(pos.data(), nrm.data(), valid.data(), n, light, out.data());
   return out;
 }
-
-std::vector<float> AsFloat(const std::vector<uint8_t>& v) { return std::vector<float>(v.begin(), v.end()); }
 
 }  // namespace
 
@@ -135,8 +135,13 @@ RunResult RunOne(const RunSpec& spec, eval::ReferenceCache& reference, const Pro
     const tech::LocalLight& l = local[k];
     r.judgedLocalLight = k;
     judgePointLight = l.type == tech::LocalLight::Point;
-    light = l.type == tech::LocalLight::Spot ? eval::ReferenceLight::MakeSpot(l.position, l.direction, l.cosOuter) : eval::ReferenceLight::MakePoint(l.position);
+    // LocalLightsOf lists the point lights, then the spot lights; their radius is the scene's.
+    float radius = size_t(k) < scene.pointLights.size() ? scene.pointLights[k].radius : scene.spotLights[k - scene.pointLights.size()].radius;
+    light = l.type == tech::LocalLight::Spot ? eval::ReferenceLight::MakeSpot(l.position, l.direction, l.cosOuter, radius)
+                                             : eval::ReferenceLight::MakePoint(l.position, radius);
   }
+  r.lightSize = light.size;
+  if (light.IsArea()) r.lightSamples = reference.Options().lightSamples;
   // The cache's tracer uses the default options (bench.cpp), so its resolution is known without
   // building a tracer when every frame comes from the cache.
   r.referenceEpsilon = eval::ReferenceOptions{}.relativeEpsilon * eval::ReferenceSceneScale(scene);
@@ -166,7 +171,7 @@ RunResult RunOne(const RunSpec& spec, eval::ReferenceCache& reference, const Pro
     tech::LabBuffers now = renderer.ReadLab();
     auto t0 = std::chrono::steady_clock::now();
     bool cached = false;
-    std::vector<uint8_t> ref = Reference(reference, now, light, &cached);
+    std::vector<float> ref = Reference(reference, now, light, &cached);
     double traceMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 
     eval::Accuracy a = eval::MeasureAccuracy(now, ref.data());
@@ -200,16 +205,15 @@ RunResult RunOne(const RunSpec& spec, eval::ReferenceCache& reference, const Pro
       }
     }
     utilizationSum += eval::MeasureUtilization(now, tech.Layers());
-    std::vector<float> refF = AsFloat(ref);
     std::ostringstream line;
     line << std::fixed << std::setprecision(3) << what << ": frame " << (i + 1) << "/" << spec.frames << " measured, misclassified "
-         << a.misclassifiedPct() << " %, reference " << (cached ? "from the cache" : "traced in " + std::to_string(int(traceMs)) + " ms");
+         << a.misclassifiedPct() << " %, mean |error| " << a.meanAbsError() << ", reference " << (cached ? "from the cache" : "traced in " + std::to_string(int(traceMs)) + " ms");
     if (i > 0) {
       eval::Flicker f = eval::MeasureFlicker(now, before);
       r.flicker.add(f);
       r.flickerSeries.push_back(f.mean());
       r.flickerReprojected.add(eval::MeasureReprojectedFlicker(prev, prev.visibility.data(), now, now.visibility.data()));
-      r.flickerReprojectedReference.add(eval::MeasureReprojectedFlicker(prev, prevReference.data(), now, refF.data()));
+      r.flickerReprojectedReference.add(eval::MeasureReprojectedFlicker(prev, prevReference.data(), now, ref.data()));
       line << std::defaultfloat << std::setprecision(2) << ", flicker " << f.mean();
     }
     say(line.str());
@@ -218,7 +222,7 @@ RunResult RunOne(const RunSpec& spec, eval::ReferenceCache& reference, const Pro
       r.firstReference = ref;
     }
     prev = std::move(now);
-    prevReference = std::move(refF);
+    prevReference = std::move(ref);
   }
   r.texelsPerPixelMedian = density.percentile(0.5);
   r.texelsPerPixelP05 = density.percentile(0.05);

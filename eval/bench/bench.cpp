@@ -1,5 +1,6 @@
 // `shadowport bench` as a library: option checks, the loop over scenes, techniques, parameter
 // sets and backends, the results file and the pictures.
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <fstream>
@@ -123,6 +124,13 @@ void ValidateBenchOptions(const BenchOptions& o) {
     throw std::invalid_argument("--triangles " + std::to_string(o.triangles) + " is above the limit of " + std::to_string(scene::kMaxTargetTriangles));
   for (float g : o.lightGammas)
     if (!(g >= 0.0f && g <= 180.0f)) throw std::invalid_argument("--light-gamma values are degrees in [0, 180] (got " + std::to_string(g) + ")");
+  if (o.lightSize) {
+    scene::Scene probe;
+    probe.name = "(any)";
+    SetLightSize(probe, *o.lightSize);  // throws for a bad value before anything loads
+  }
+  if (o.lightSamples < 1 || o.lightSamples > 65535)
+    throw std::invalid_argument("--light-samples must be in 1..65535 (got " + std::to_string(o.lightSamples) + ")");
   if (o.techniques.empty()) throw std::invalid_argument("no technique given");
   if (o.backends.empty()) throw std::invalid_argument("no backend given");
   if (o.frames < 1) throw std::invalid_argument("--frames must be at least 1");
@@ -131,7 +139,8 @@ void ValidateBenchOptions(const BenchOptions& o) {
     std::unique_ptr<tech::Technique> technique = tech::CreateTechnique(t.name);  // throws listing the names
     for (const auto& [k, v] : o.params)
       if (t.params.count(k)) throw std::invalid_argument("parameter " + k + " is set both in --technique " + text + " and by --param");
-    for (const auto& set : ParamSets(o.params)) tech::ParamValues::Parse(t.name, technique->Params(), RunParams(t, set));
+    for (const auto& set : ParamSets(o.params))
+      tech::ParamValues::Parse(t.name, technique->Params(), MatchLightSize(t.name, technique->Params(), RunParams(t, set), o.lightSize));
   }
 }
 
@@ -187,6 +196,7 @@ nlohmann::json RunToJson(const RunResult& r, const std::map<std::string, std::st
         {"flicker_pixels", r.flicker.pixels},
         {"flicker_unmatched_pixels", r.flicker.unmatched},
         {"reference_epsilon", r.referenceEpsilon},
+        {"light_size", r.lightSize},
         {"warmup_frames_dropped", r.frames > kWarmupFrames ? kWarmupFrames : 0u},
         {"disjoint_frames", r.disjointFrames},
         {"validation_enabled", r.validationEnabled},
@@ -194,6 +204,7 @@ nlohmann::json RunToJson(const RunResult& r, const std::map<std::string, std::st
   };
   // Local-light techniques are judged on one local light (index into the scene's point lights, then spot lights).
   if (r.judgedLocalLight >= 0) run["checks"]["judged_local_light"] = r.judgedLocalLight;
+  if (r.lightSamples) run["checks"]["reference_light_samples"] = r.lightSamples;
   // A judged point light: misclassification within the band around its cube-face edges and away
   // from it (docs/local-lights.md, "Seam metric").
   if (r.seamBand > 0) {
@@ -209,6 +220,36 @@ nlohmann::json RunToJson(const RunResult& r, const std::map<std::string, std::st
   if (!r.lastValidationError.empty()) run["checks"]["last_validation_error"] = r.lastValidationError;
   if (!images.empty()) run["images"] = images;
   return run;
+}
+
+void SetLightSize(scene::Scene& scene, float size) {
+  if (!std::isfinite(size) || size < 0.0f)
+    throw std::invalid_argument("--light-size must be a finite number >= 0 (got " + std::to_string(size) + ") for scene '" + scene.name + "'");
+  if (!(size < 180.0f))
+    throw std::invalid_argument("--light-size " + std::to_string(size) + " is the directional light's angular diameter in degrees, which must be below 180 (scene '" +
+                                scene.name + "')");
+  scene.light.angularDiameterDegrees = size;
+  for (scene::PointLight& l : scene.pointLights) l.radius = size;
+  for (scene::SpotLight& l : scene.spotLights) l.radius = size;
+}
+
+std::map<std::string, std::string> MatchLightSize(const std::string& technique, const std::vector<tech::ParamSpec>& specs,
+                                                  std::map<std::string, std::string> params, std::optional<float> lightSize) {
+  if (!lightSize) return params;
+  bool has = std::any_of(specs.begin(), specs.end(), [](const tech::ParamSpec& p) { return p.name == "light_size"; });
+  if (!has) return params;
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", double(*lightSize));
+  if (auto given = params.find("light_size"); given != params.end()) {
+    char* end = nullptr;
+    float v = std::strtof(given->second.c_str(), &end);
+    if (end == given->second.c_str() || *end || v != std::strtof(text, nullptr))
+      throw std::invalid_argument("technique '" + technique + "' sets light_size=" + given->second + " but --light-size is " + text +
+                                  ": the technique and the reference would judge different lights");
+    return params;
+  }
+  if (*lightSize > 0.0f) params["light_size"] = text;
+  return params;
 }
 
 glm::vec3 LightAtGamma(const glm::vec3& viewForward, float gammaDegrees) {
@@ -243,6 +284,7 @@ nlohmann::json RunBench(const BenchOptions& o, const Progress& progress) {
     if (sc.name.empty()) sc.name = fs::path(name).stem().string();
     if (sc.cameraPaths.empty()) sc.cameraPaths = scene::CameraPathsFor(sc);
     sc.cameraPath(o.path);  // throws listing the scene's paths
+    if (o.lightSize) SetLightSize(sc, *o.lightSize);
     if (o.lightGammas.empty()) {
       scenes.push_back(std::move(sc));
       continue;
@@ -261,12 +303,15 @@ nlohmann::json RunBench(const BenchOptions& o, const Progress& progress) {
     const scene::Scene& sc = scenes[si];
     if (progress) progress("scene " + std::to_string(si + 1) + "/" + std::to_string(scenes.size()) + ": " + sc.name);
     const scene::CameraPath& path = sc.cameraPath(o.path);
-    eval::ReferenceCache cache(sc, ReferenceCacheDir(o));
+    eval::ReferenceOptions ro;
+    ro.lightSamples = o.lightSamples;
+    eval::ReferenceCache cache(sc, ReferenceCacheDir(o), ro);
     std::map<int, std::string> referenceImages;
     for (size_t ti = 0; ti < o.techniques.size(); ++ti)
       for (const auto& set : sets) {
         const TechniqueSpec t = ParseTechniqueSpec(o.techniques[ti]);
-        const std::map<std::string, std::string> params = RunParams(t, set);
+        const std::map<std::string, std::string> params =
+            MatchLightSize(t.name, tech::CreateTechnique(t.name)->Params(), RunParams(t, set), o.lightSize);
         // The first backend's picture, which the others' are compared with.
         std::vector<uint8_t> firstColor;
         std::string firstBackend;

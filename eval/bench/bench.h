@@ -20,6 +20,7 @@
 #include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -73,7 +74,7 @@ struct RunResult {
   std::vector<double> misclassifiedSeries, gpuTotalSeries, cpuSeries;  // frames 0..N-1
 
   tech::LabBuffers firstFrame;              // frame 0 (the path's start), for the pictures
-  std::vector<uint8_t> firstReference;
+  std::vector<float> firstReference;        // fraction of the light visible (0/1 for a hard light)
   scene::DirectionalLight light;
   int judgedLocalLight = -1;                // Technique::LabLocalLight: -1 the directional light
   // Where a point light is judged: accuracy inside the band around its cube-face edges and
@@ -89,6 +90,10 @@ struct RunResult {
   bool validationEnabled = false;           // the layers / debug output were really on
   std::string lastValidationError;
   float referenceEpsilon = 0;
+  // The judged light's size (eval::ReferenceLight::size: degrees for the directional light, a
+  // radius for a local one); 0 = hard.
+  float lightSize = 0;
+  unsigned lightSamples = 0;  // reference rays per pixel for an area light; 0 for a hard light
 };
 
 // Runs one (scene, technique, parameters, backend). Throws std::invalid_argument for an unknown
@@ -124,7 +129,26 @@ struct BenchOptions {
   // 180: towards the viewer, duelling frusta), turned in the plane of the view and world down.
   // Empty: the scenes' own lights.
   std::vector<float> lightGammas;
+  // When set, replaces every light's size in every scene (`--light-size`): the directional light's
+  // angular diameter in degrees (scene::DirectionalLight::angularDiameterDegrees) and the point and
+  // spot lights' radius in world units, so techniques and the reference see the same source.
+  std::optional<float> lightSize;
+  // Reference rays per pixel for area lights (`--light-samples`, eval::ReferenceOptions).
+  unsigned lightSamples = eval::ReferenceOptions{}.lightSamples;
 };
+
+// Sets every light of `scene` to `size` (see BenchOptions::lightSize). Throws
+// std::invalid_argument naming --light-size and the scene for a negative or non-finite size, or a
+// directional angular diameter of 180 degrees or more.
+void SetLightSize(scene::Scene& scene, float size);
+
+// A technique that models the light's size itself (a `light_size` parameter, e.g. csm's
+// filter=pcss, with the same units as --light-size) gets --light-size's value unless its own is
+// given, so it and the reference see the same light. Returns `params` with it filled in; size 0
+// (hard) leaves the technique's default. Throws std::invalid_argument when `params` sets a
+// different light_size, naming both.
+std::map<std::string, std::string> MatchLightSize(const std::string& technique, const std::vector<tech::ParamSpec>& specs,
+                                                  std::map<std::string, std::string> params, std::optional<float> lightSize);
 
 // The light direction at `gammaDegrees` to `viewForward` (see BenchOptions::lightGammas).
 glm::vec3 LightAtGamma(const glm::vec3& viewForward, float gammaDegrees);

@@ -149,6 +149,10 @@ const Rgb kDensityBands[11] = {{103, 0, 31},    {178, 24, 43},   {214, 96, 77}, 
 }  // namespace
 
 std::vector<uint8_t> ErrorHeatMap(const tech::LabBuffers& lab, const uint8_t* reference, uint32_t* imageHeight) {
+  return ErrorHeatMap(lab, ReferenceAsFloat(lab, reference).data(), imageHeight);
+}
+
+std::vector<uint8_t> ErrorHeatMap(const tech::LabBuffers& lab, const float* reference, uint32_t* imageHeight) {
   std::vector<LegendItem> legend = {{true, kFalseLit, "false lit (leak)"},
                                     {true, kFalseShadow, "false shadow (acne)"},
                                     {true, {150, 150, 150}, "correct"},
@@ -160,8 +164,8 @@ std::vector<uint8_t> ErrorHeatMap(const tech::LabBuffers& lab, const uint8_t* re
     }
     uint8_t g = uint8_t(40 + Grey(lab, i, 0.75));  // keeps the shadows readable under the colours
     Rgb grey{g, g, g};
-    double err = double(lab.visibility[i]) - (reference[i] ? 1.0 : 0.0);
-    bool wrong = (lab.visibility[i] >= kLitThreshold) != (reference[i] != 0);
+    double err = double(lab.visibility[i]) - double(reference[i]);
+    bool wrong = (lab.visibility[i] >= kLitThreshold) != (reference[i] >= kLitThreshold);
     // Misclassified pixels at full strength; a filtered technique's partial errors as a tint.
     return Mix(grey, err > 0 ? kFalseLit : kFalseShadow, wrong ? 1.0 : std::abs(err));
   });
@@ -214,6 +218,11 @@ glm::dvec3 LocalLightAt(const tech::LocalLight& l, const glm::vec3& p, const glm
 
 std::vector<uint8_t> ReferenceImage(const tech::LabBuffers& lab, const uint8_t* reference, const scene::DirectionalLight& light,
                                     const std::vector<tech::LocalLight>& localLights, int judgedLocalLight) {
+  return ReferenceImage(lab, ReferenceAsFloat(lab, reference).data(), light, localLights, judgedLocalLight);
+}
+
+std::vector<uint8_t> ReferenceImage(const tech::LabBuffers& lab, const float* reference, const scene::DirectionalLight& light,
+                                    const std::vector<tech::LocalLight>& localLights, int judgedLocalLight) {
   if (judgedLocalLight >= int(localLights.size()))
     throw std::invalid_argument("reference image: judged local light " + std::to_string(judgedLocalLight) + " but " +
                                 std::to_string(localLights.size()) + " local lights given");
@@ -223,7 +232,7 @@ std::vector<uint8_t> ReferenceImage(const tech::LabBuffers& lab, const uint8_t* 
   for (size_t i = 0; i < lab.size(); ++i) {
     glm::dvec3 v(sky[0], sky[1], sky[2]);
     if (lab.drawn(i)) {
-      double vis = lab.receiving(i) && reference[i] ? 1.0 : 0.0;
+      double vis = lab.receiving(i) ? double(reference[i]) : 0.0;
       glm::dvec3 albedo(lab.albedo[i * 4] / 255.0, lab.albedo[i * 4 + 1] / 255.0, lab.albedo[i * 4 + 2] / 255.0);
       glm::dvec3 lit(light.ambient);
       if (judgedLocalLight < 0) {

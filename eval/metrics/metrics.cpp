@@ -17,20 +17,30 @@ void Accuracy::add(const Accuracy& o) {
 
 namespace {
 
-void Judge(Accuracy& a, float v, bool refLit) {
-  bool lit = v >= kLitThreshold;
+void Judge(Accuracy& a, float v, float ref) {
+  bool lit = v >= kLitThreshold, refLit = ref >= kLitThreshold;
   ++a.receiving;
   if (lit && !refLit) ++a.falseLit;
   if (!lit && refLit) ++a.falseShadow;
-  a.absErrorSum += std::abs(double(v) - (refLit ? 1.0 : 0.0));
+  a.absErrorSum += std::abs(double(v) - double(ref));
 }
 
 }  // namespace
 
+std::vector<float> ReferenceAsFloat(const tech::LabBuffers& lab, const uint8_t* reference) {
+  std::vector<float> f(lab.size(), 0.0f);
+  for (size_t i = 0; i < f.size(); ++i) f[i] = reference[i] ? 1.0f : 0.0f;
+  return f;
+}
+
 Accuracy MeasureAccuracy(const tech::LabBuffers& lab, const uint8_t* reference) {
+  return MeasureAccuracy(lab, ReferenceAsFloat(lab, reference).data());
+}
+
+Accuracy MeasureAccuracy(const tech::LabBuffers& lab, const float* reference) {
   Accuracy a;
   for (size_t i = 0; i < lab.size(); ++i)
-    if (lab.receiving(i)) Judge(a, lab.visibility[i], reference[i] != 0);
+    if (lab.receiving(i)) Judge(a, lab.visibility[i], reference[i]);
   return a;
 }
 
@@ -43,11 +53,15 @@ float CubeEdgeGap(const glm::vec3& d) {
 }
 
 SeamAccuracy MeasureSeamAccuracy(const tech::LabBuffers& lab, const uint8_t* reference, const glm::vec3& light, float band) {
+  return MeasureSeamAccuracy(lab, ReferenceAsFloat(lab, reference).data(), light, band);
+}
+
+SeamAccuracy MeasureSeamAccuracy(const tech::LabBuffers& lab, const float* reference, const glm::vec3& light, float band) {
   if (!(band > 0.0f && band < 1.0f)) throw std::invalid_argument("seam band " + std::to_string(band) + " is outside (0, 1)");
   SeamAccuracy s;
   for (size_t i = 0; i < lab.size(); ++i)
     if (lab.receiving(i))
-      Judge(CubeEdgeGap(glm::vec3(lab.position[i]) - light) < band ? s.band : s.elsewhere, lab.visibility[i], reference[i] != 0);
+      Judge(CubeEdgeGap(glm::vec3(lab.position[i]) - light) < band ? s.band : s.elsewhere, lab.visibility[i], reference[i]);
   return s;
 }
 

@@ -15,13 +15,18 @@ namespace sp::eval {
 // A filtered technique's visibility counts as lit from this value up.
 constexpr float kLitThreshold = 0.5f;
 
-// --- Accuracy against the reference (1 = lit, 0 = shadowed per pixel)
+// --- Accuracy against the reference: per pixel the fraction of the light visible, 0..1 (0/1 for a
+// hard light; fractional in the penumbra of an area light, ReferenceLight::size). A pixel is
+// misclassified when it and the reference fall on different sides of kLitThreshold; the mean
+// absolute error |visibility - reference| is what judges a penumbra's shape (a soft technique can
+// classify every pixel right and still get the penumbra's width wrong). The uint8 overloads take
+// 1 = lit, 0 = shadowed and judge exactly as the float ones.
 
 struct Accuracy {
   uint64_t receiving = 0;    // pixels judged
   uint64_t falseLit = 0;     // lit although the reference is shadowed: leaks, peter-panning
   uint64_t falseShadow = 0;  // shadowed although the reference is lit: acne, over-darkening
-  double absErrorSum = 0;    // sum of |visibility - reference|
+  double absErrorSum = 0;    // sum of |visibility - reference|: meanAbsError, "mean_abs_error" in results
 
   void add(const Accuracy& o);
   double misclassifiedPct() const { return Pct(falseLit + falseShadow); }
@@ -34,6 +39,7 @@ struct Accuracy {
 };
 
 Accuracy MeasureAccuracy(const tech::LabBuffers& lab, const uint8_t* reference);
+Accuracy MeasureAccuracy(const tech::LabBuffers& lab, const float* reference);
 
 // --- Seams: accuracy near the edges between the faces of a point light's shadow cube
 
@@ -58,6 +64,7 @@ struct SeamAccuracy {
 // MeasureAccuracy split by the seam band around the cube-face edges of a point light at `light`.
 // `band` must be in (0, 1).
 SeamAccuracy MeasureSeamAccuracy(const tech::LabBuffers& lab, const uint8_t* reference, const glm::vec3& light, float band);
+SeamAccuracy MeasureSeamAccuracy(const tech::LabBuffers& lab, const float* reference, const glm::vec3& light, float band);
 
 // --- Perspective aliasing: texels per pixel (LabBuffers::lookup.w)
 
@@ -127,6 +134,7 @@ Flicker MeasureReprojectedFlicker(const tech::LabBuffers& prev, const float* pre
 // Receiving pixels correct in grey, false lit in red, false shadow in blue (partial errors of
 // filtered techniques as a partial tint); the rest darker grey.
 std::vector<uint8_t> ErrorHeatMap(const tech::LabBuffers& lab, const uint8_t* reference, uint32_t* imageHeight);
+std::vector<uint8_t> ErrorHeatMap(const tech::LabBuffers& lab, const float* reference, uint32_t* imageHeight);
 // Texels per pixel in octave bands from <= 1/32 (dark red, undersampled) through 1 (white) to
 // >= 32 (dark blue, oversampled).
 std::vector<uint8_t> TexelDensityHeatMap(const tech::LabBuffers& lab, uint32_t* imageHeight);
@@ -136,6 +144,10 @@ std::vector<uint8_t> TexelDensityHeatMap(const tech::LabBuffers& lab, uint32_t* 
 // directional light unshadowed, as the lit pass draws a local-light technique's frame.
 std::vector<uint8_t> ReferenceImage(const tech::LabBuffers& lab, const uint8_t* reference, const scene::DirectionalLight& light,
                                     const std::vector<tech::LocalLight>& localLights = {}, int judgedLocalLight = -1);
+std::vector<uint8_t> ReferenceImage(const tech::LabBuffers& lab, const float* reference, const scene::DirectionalLight& light,
+                                    const std::vector<tech::LocalLight>& localLights = {}, int judgedLocalLight = -1);
+// The uint8 reference (0/1) as the float one, for the overloads above.
+std::vector<float> ReferenceAsFloat(const tech::LabBuffers& lab, const uint8_t* reference);
 // The band colours of TexelDensityHeatMap, index 0 (<= 1/32) to 10 (>= 32).
 std::array<uint8_t, 3> TexelDensityColor(float texelsPerPixel);
 

@@ -15,8 +15,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr char kMagic[8] = {'S', 'P', 'R', 'E', 'F', 'V', 'S', '1'};
-constexpr size_t kHeaderBytes = 32;  // magic, key, count, checksum
+constexpr char kMagic[8] = {'S', 'P', 'R', 'E', 'F', 'V', 'S', '2'};
+constexpr size_t kHeaderBytes = 40;  // magic, key, count, samples per pixel, checksum
 
 // A streaming 64-bit hash (MurmurHash3's mixing, fed 8 bytes at a time). Not cryptographic: keys
 // only need to tell apart the inputs one lab produces, which 64 well-mixed bits do.
@@ -73,31 +73,35 @@ std::string Hex(uint64_t v) {
   return s;
 }
 
-uint64_t Checksum(const std::vector<uint8_t>& bits) {
+uint64_t Checksum(const std::vector<uint8_t>& payload) {
   Hasher h;
-  h.Add(bits.data(), bits.size());
+  h.Add(payload.data(), payload.size());
   return h.Digest();
 }
 
-// Reads `file` into `bits` when it is a complete result for `key` and `count`; anything else
-// (absent, truncated, another format, corrupted) is a miss.
-bool Load(const fs::path& file, uint64_t key, size_t count, std::vector<uint8_t>& bits) {
+// The payload of `count` pixels: one bit each for a hard light (samples 0), else a uint16 each.
+size_t PayloadBytes(size_t count, uint64_t samples) { return samples ? 2 * count : (count + 7) / 8; }
+
+// Reads `file` into `payload` when it is a complete result for `key`, `count` and `samples`;
+// anything else (absent, truncated, another format, corrupted) is a miss.
+bool Load(const fs::path& file, uint64_t key, size_t count, uint64_t samples, std::vector<uint8_t>& payload) {
   std::ifstream in(file, std::ios::binary);
   if (!in) return false;
   char header[kHeaderBytes];
   if (!in.read(header, kHeaderBytes)) return false;
-  uint64_t fileKey, fileCount, checksum;
+  uint64_t fileKey, fileCount, fileSamples, checksum;
   std::memcpy(&fileKey, header + 8, 8);
   std::memcpy(&fileCount, header + 16, 8);
-  std::memcpy(&checksum, header + 24, 8);
-  if (std::memcmp(header, kMagic, 8) != 0 || fileKey != key || fileCount != count) return false;
-  bits.assign((count + 7) / 8, 0);
-  if (!in.read(reinterpret_cast<char*>(bits.data()), std::streamsize(bits.size()))) return false;
+  std::memcpy(&fileSamples, header + 24, 8);
+  std::memcpy(&checksum, header + 32, 8);
+  if (std::memcmp(header, kMagic, 8) != 0 || fileKey != key || fileCount != count || fileSamples != samples) return false;
+  payload.assign(PayloadBytes(count, samples), 0);
+  if (!in.read(reinterpret_cast<char*>(payload.data()), std::streamsize(payload.size()))) return false;
   if (in.peek() != std::char_traits<char>::eof()) return false;
-  return Checksum(bits) == checksum;
+  return Checksum(payload) == checksum;
 }
 
-void Store(const fs::path& file, uint64_t key, size_t count, const std::vector<uint8_t>& bits) {
+void Store(const fs::path& file, uint64_t key, size_t count, uint64_t samples, const std::vector<uint8_t>& payload) {
   std::error_code ec;
   fs::create_directories(file.parent_path(), ec);
   if (ec) throw std::runtime_error("ReferenceCache: cannot create cache directory " + file.parent_path().string() + ": " + ec.message());
@@ -109,10 +113,10 @@ void Store(const fs::path& file, uint64_t key, size_t count, const std::vector<u
   tmp += ".tmp-" + Hex(salt);
   {
     std::ofstream o(tmp, std::ios::binary | std::ios::trunc);
-    uint64_t header[3] = {key, uint64_t(count), Checksum(bits)};
+    uint64_t header[4] = {key, uint64_t(count), samples, Checksum(payload)};
     o.write(kMagic, 8);
     o.write(reinterpret_cast<const char*>(header), sizeof header);
-    o.write(reinterpret_cast<const char*>(bits.data()), std::streamsize(bits.size()));
+    o.write(reinterpret_cast<const char*>(payload.data()), std::streamsize(payload.size()));
     o.close();
     if (!o) {
       fs::remove(tmp, ec);
@@ -174,6 +178,11 @@ uint64_t ReferenceCache::Key(const glm::vec3* positions, const glm::vec3* normal
   h.Value(light.direction);
   h.Value(light.position);
   h.Value(light.spotCosHalfAngle);
+  h.Value(light.size);
+  if (light.IsArea()) {
+    h.Word(options_.lightSamples);
+    h.Word(options_.seed);
+  }
   h.Word(count);
   if (!callerKey.empty()) {
     h.Word(1);
@@ -202,33 +211,65 @@ fs::path ReferenceCache::FileFor(const glm::vec3* positions, const glm::vec3* no
   return directory_ / (Hex(Key(positions, normals, valid, count, light, callerKey)) + ".vis");
 }
 
-bool ReferenceCache::Visibility(const glm::vec3* positions, const glm::vec3* normals, const uint8_t* valid, size_t count,
-                                const ReferenceLight& light, uint8_t* out, const std::string& callerKey) {
-  // Validated here too, so a bad buffer fails the same way whether or not its result is cached.
-  detail::ValidateVisibilityInputs("ReferenceCache::Visibility", positions, normals, valid, count, light, out);
-  if (count == 0) return false;
+bool ReferenceCache::Samples(const glm::vec3* positions, const glm::vec3* normals, const uint8_t* valid, size_t count,
+                             const ReferenceLight& light, const std::string& callerKey, std::vector<uint16_t>& samples) {
+  if (light.IsArea() && (options_.lightSamples < 1 || options_.lightSamples > 65535))
+    throw std::runtime_error("ReferenceCache: lightSamples " + std::to_string(options_.lightSamples) + " is outside 1..65535");
+  const uint64_t perPixel = light.IsArea() ? options_.lightSamples : 0;
   const uint64_t key = Key(positions, normals, valid, count, light, callerKey);
   const fs::path file = directory_ / (Hex(key) + ".vis");
-  std::vector<uint8_t> bits;
-  if (Load(file, key, count, bits)) {
+  std::vector<uint8_t> payload;
+  samples.assign(count, 0);
+  if (Load(file, key, count, perPixel, payload)) {
     for (size_t i = 0; i < count; ++i)
-      if (!valid || valid[i]) out[i] = (bits[i >> 3] >> (i & 7)) & 1;
+      if (perPixel)
+        std::memcpy(&samples[i], &payload[2 * i], 2);
+      else
+        samples[i] = (payload[i >> 3] >> (i & 7)) & 1;
     ++hits_;
     return true;
   }
   ++misses_;
   if (beforeTracing_) beforeTracing_(count);
-  // Traced into a scratch buffer: the file holds every pixel while `out` keeps its invalid ones.
-  std::vector<uint8_t> result(count, 0);
-  Tracer().Visibility(positions, normals, valid, count, light, result.data());
-  bits.assign((count + 7) / 8, 0);
+  // The file holds every pixel (invalid ones as 0) while the caller's `out` keeps its invalid ones.
+  Tracer().VisibleSamples(positions, normals, valid, count, light, samples.data());
+  payload.assign(PayloadBytes(count, perPixel), 0);
   for (size_t i = 0; i < count; ++i) {
-    if (valid && !valid[i]) continue;
-    out[i] = result[i];
-    bits[i >> 3] |= uint8_t(result[i] << (i & 7));
+    if (perPixel)
+      std::memcpy(&payload[2 * i], &samples[i], 2);
+    else
+      payload[i >> 3] |= uint8_t((samples[i] & 1) << (i & 7));
   }
-  Store(file, key, count, bits);
+  Store(file, key, count, perPixel, payload);
   return false;
+}
+
+bool ReferenceCache::Visibility(const glm::vec3* positions, const glm::vec3* normals, const uint8_t* valid, size_t count,
+                                const ReferenceLight& light, uint8_t* out, const std::string& callerKey) {
+  // Validated here too, so a bad buffer fails the same way whether or not its result is cached.
+  detail::ValidateVisibilityInputs("ReferenceCache::Visibility", positions, normals, valid, count, light, out);
+  if (count == 0) return false;
+  if (light.IsArea())
+    throw std::runtime_error("ReferenceCache::Visibility: the light has size " + std::to_string(light.size) +
+                             ", an area light, whose visibility is fractional: use the float overload");
+  std::vector<uint16_t> samples;
+  bool hit = Samples(positions, normals, valid, count, light, callerKey, samples);
+  for (size_t i = 0; i < count; ++i)
+    if (!valid || valid[i]) out[i] = uint8_t(samples[i]);
+  return hit;
+}
+
+bool ReferenceCache::Visibility(const glm::vec3* positions, const glm::vec3* normals, const uint8_t* valid, size_t count,
+                                const ReferenceLight& light, float* out, const std::string& callerKey) {
+  detail::ValidateVisibilityInputs("ReferenceCache::Visibility", positions, normals, valid, count, light, out);
+  if (count == 0) return false;
+  std::vector<uint16_t> samples;
+  bool hit = Samples(positions, normals, valid, count, light, callerKey, samples);
+  // As ReferenceTracer::Visibility divides, so a result from the file equals one traced.
+  const float n = light.IsArea() ? float(options_.lightSamples) : 1.0f;
+  for (size_t i = 0; i < count; ++i)
+    if (!valid || valid[i]) out[i] = float(samples[i]) / n;
+  return hit;
 }
 
 }  // namespace sp::eval

@@ -10,6 +10,6 @@ namespace sp::eval::detail {
 // Throws std::runtime_error prefixed with `who` for a null buffer, an ill-formed light, or a
 // valid pixel with a non-finite position or a zero or non-finite normal (naming the pixel).
 void ValidateVisibilityInputs(const char* who, const glm::vec3* positions, const glm::vec3* normals, const uint8_t* valid,
-                              size_t count, const ReferenceLight& light, const uint8_t* out);
+                              size_t count, const ReferenceLight& light, const void* out);
 
 }  // namespace sp::eval::detail

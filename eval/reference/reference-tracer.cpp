@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <mutex>
 #include <sstream>
@@ -55,33 +56,58 @@ bool NeedsBaking(const glm::mat4& m) {
   return !(std::abs(glm::determinant(a)) > 1e-6f * volume);
 }
 
+// A shadow ray from origin along dir, occluded by anything in (tnear, tfar).
+void SetShadowRay(RTCRay& r, const glm::vec3& origin, const glm::vec3& dir, float tnear, float tfar, unsigned id) {
+  r.org_x = origin.x, r.org_y = origin.y, r.org_z = origin.z;
+  r.dir_x = dir.x, r.dir_y = dir.y, r.dir_z = dir.z;
+  r.tnear = tnear;
+  r.tfar = tfar;
+  r.time = 0.0f;
+  r.mask = 0xFFFFFFFFu;
+  r.id = id;
+  r.flags = 0;
+}
+
+// Runs `work` on min(threads, chunks) threads, the calling one included; `work` takes chunks
+// from a shared counter until none is left.
+template <class Work>
+void OnThreads(unsigned threads, size_t chunks, Work&& work) {
+  std::vector<std::thread> pool;
+  for (unsigned t = 1; t < unsigned(std::min<size_t>(threads, chunks)); ++t) pool.emplace_back(work);
+  work();
+  for (std::thread& t : pool) t.join();
+}
+
 }  // namespace
 
 ReferenceLight ReferenceLight::FromScene(const scene::DirectionalLight& light) {
   ReferenceLight l;
   l.type = Directional;
   l.direction = light.direction;
+  l.size = light.angularDiameterDegrees;
   return l;
 }
 
-ReferenceLight ReferenceLight::MakePoint(const glm::vec3& position) {
+ReferenceLight ReferenceLight::MakePoint(const glm::vec3& position, float radius) {
   ReferenceLight l;
   l.type = Point;
   l.position = position;
+  l.size = radius;
   return l;
 }
 
-ReferenceLight ReferenceLight::MakeSpot(const glm::vec3& position, const glm::vec3& direction, float cosHalfAngle) {
+ReferenceLight ReferenceLight::MakeSpot(const glm::vec3& position, const glm::vec3& direction, float cosHalfAngle, float radius) {
   ReferenceLight l;
   l.type = Spot;
   l.position = position;
   l.direction = direction;
   l.spotCosHalfAngle = cosHalfAngle;
+  l.size = radius;
   return l;
 }
 
 void detail::ValidateVisibilityInputs(const char* who, const glm::vec3* positions, const glm::vec3* normals,
-                                      const uint8_t* valid, size_t count, const ReferenceLight& light, const uint8_t* out) {
+                                      const uint8_t* valid, size_t count, const ReferenceLight& light, const void* out) {
   const std::string w = std::string(who) + ": ";
   if (count == 0) return;
   if (!positions || !normals || !out) throw std::runtime_error(w + "positions, normals and out must not be null");
@@ -93,6 +119,11 @@ void detail::ValidateVisibilityInputs(const char* who, const glm::vec3* position
     throw std::runtime_error(w + "light position " + Str(light.position) + " is not finite");
   if (light.type == ReferenceLight::Spot && !std::isfinite(light.spotCosHalfAngle))
     throw std::runtime_error(w + "spotCosHalfAngle is not finite");
+  if (!std::isfinite(light.size) || light.size < 0.0f)
+    throw std::runtime_error(w + "light size " + std::to_string(light.size) + " is negative or not finite");
+  if (light.type == ReferenceLight::Directional && !(light.size < 180.0f))
+    throw std::runtime_error(w + "directional light angular diameter " + std::to_string(light.size) +
+                             " degrees is not below 180");
   for (size_t i = 0; i < count; ++i) {
     if (valid && !valid[i]) continue;
     if (!Finite(positions[i]))
@@ -123,6 +154,8 @@ struct ReferenceTracer::Impl {
   float scale = 0, epsilon = 0;
   size_t triangles = 0;
   unsigned threads = 1;
+  unsigned samples = 1;
+  uint64_t seed = 0;
   mutable std::atomic<uint64_t> traced{0};
   mutable std::mutex errorMutex;
   mutable std::string error;  // the first message Embree reported since the last Check
@@ -220,6 +253,11 @@ ReferenceTracer::ReferenceTracer(const scene::Scene& scene, const ReferenceOptio
                                  " but the mesh has " + std::to_string(mesh.vertices.size()) + " vertices");
   }
 
+  if (options.lightSamples < 1 || options.lightSamples > 65535)
+    throw std::runtime_error(where + "lightSamples " + std::to_string(options.lightSamples) + " is outside 1..65535");
+  I.samples = options.lightSamples;
+  I.seed = options.seed;
+
   I.scale = ReferenceSceneScale(scene);
   I.epsilon = options.relativeEpsilon * I.scale;
   I.threads = options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());
@@ -308,6 +346,9 @@ void ReferenceTracer::Visibility(const glm::vec3* positions, const glm::vec3* no
                                  const ReferenceLight& light, uint8_t* out) const {
   if (count == 0) return;
   detail::ValidateVisibilityInputs("ReferenceTracer::Visibility", positions, normals, valid, count, light, out);
+  if (light.IsArea())
+    throw std::runtime_error("ReferenceTracer::Visibility: the light has size " + std::to_string(light.size) +
+                             ", an area light, whose visibility is fractional: use the float overload");
   const Impl& I = *impl_;
   const float eps = I.epsilon;
   glm::vec3 axis(0);
@@ -368,15 +409,7 @@ void ReferenceTracer::Visibility(const glm::vec3* positions, const glm::vec3* no
             continue;
           }
         }
-        RTCRay& r = rays[n];
-        r.org_x = origin.x, r.org_y = origin.y, r.org_z = origin.z;
-        r.dir_x = dir.x, r.dir_y = dir.y, r.dir_z = dir.z;
-        r.tnear = eps;
-        r.tfar = tfar;
-        r.time = 0.0f;
-        r.mask = 0xFFFFFFFFu;
-        r.id = n;
-        r.flags = 0;
+        SetShadowRay(rays[n], origin, dir, eps, tfar, n);
         pixel[n++] = i;
       }
       if (n == 0) continue;
@@ -386,13 +419,195 @@ void ReferenceTracer::Visibility(const glm::vec3* positions, const glm::vec3* no
     }
     rayCount += cast;
   };
-  const unsigned threads = unsigned(std::min<size_t>(I.threads, chunks));
-  std::vector<std::thread> pool;
-  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work);
-  work();
-  for (std::thread& t : pool) t.join();
+  OnThreads(I.threads, chunks, work);
   I.traced += rayCount.load();
   I.Check("tracing shadow rays");
+}
+
+
+unsigned ReferenceTracer::SamplesFor(const ReferenceLight& light) const { return light.IsArea() ? impl_->samples : 1u; }
+
+void ReferenceTracer::Visibility(const glm::vec3* positions, const glm::vec3* normals, const uint8_t* valid, size_t count,
+                                 const ReferenceLight& light, float* out) const {
+  if (count == 0) return;
+  detail::ValidateVisibilityInputs("ReferenceTracer::Visibility", positions, normals, valid, count, light, out);
+  std::vector<uint16_t> seen(count, 0);
+  VisibleSamples(positions, normals, valid, count, light, seen.data());
+  const float n = float(SamplesFor(light));
+  for (size_t i = 0; i < count; ++i)
+    if (!valid || valid[i]) out[i] = float(seen[i]) / n;
+}
+
+namespace {
+
+uint64_t SplitMix(uint64_t z) {
+  z += 0x9e3779b97f4a7c15ull;
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+  return z ^ (z >> 31);
+}
+
+uint64_t Bits(const glm::vec3& v) {
+  uint32_t b[3];
+  std::memcpy(b, &v, sizeof b);
+  return SplitMix(SplitMix(SplitMix(b[0]) ^ b[1]) ^ b[2]);
+}
+
+float RadicalInverse2(uint32_t i) {
+  i = (i << 16) | (i >> 16);
+  i = ((i & 0x00ff00ffu) << 8) | ((i & 0xff00ff00u) >> 8);
+  i = ((i & 0x0f0f0f0fu) << 4) | ((i & 0xf0f0f0f0u) >> 4);
+  i = ((i & 0x33333333u) << 2) | ((i & 0xccccccccu) >> 2);
+  i = ((i & 0x55555555u) << 1) | ((i & 0xaaaaaaaau) >> 1);
+  return float(i >> 8) * 0x1p-24f;
+}
+
+// Shirley and Chiu's concentric map of the unit square onto the unit disc: area preserving and of
+// low distortion, so the square's even spread of points stays even on the disc.
+glm::vec2 ConcentricDisc(float u, float v) {
+  float a = 2.0f * u - 1.0f, b = 2.0f * v - 1.0f;
+  if (a == 0.0f && b == 0.0f) return {0.0f, 0.0f};
+  constexpr float kQuarterPi = 0.785398163f;
+  if (std::abs(a) > std::abs(b)) return a * glm::vec2(std::cos(kQuarterPi * b / a), std::sin(kQuarterPi * b / a));
+  return b * glm::vec2(std::sin(kQuarterPi * a / b), std::cos(kQuarterPi * a / b));
+}
+
+// The cone of directions from a point to an area light: its axis and 1 - cos(half angle), with
+// the sphere's centre distance and radius for where a ray reaches the light (directional: none).
+// Per-sample work is in float, which the measured throughput needed (it was as slow as the
+// tracing in double); 1 - cos is carried as such, never as cos, so tiny cones keep their size.
+struct LightCone {
+  glm::vec3 axis, t1, t2;
+  float oneMinusCos = 0;
+  float distance = 0, radius = 0;
+};
+
+// Directions uniform in the cone's solid angle: a disc point at radius r maps to 1 - cos(theta) =
+// r^2 (1 - cos(half angle)), which is uniform in solid angle because the disc map keeps area.
+// Returns the direction and sets *oneMinusCosTheta.
+glm::vec3 ConeDirection(const LightCone& c, float u, float v, float* oneMinusCosTheta) {
+  glm::vec2 d = ConcentricDisc(u, v);
+  float r2 = glm::dot(d, d);
+  float m = r2 * c.oneMinusCos;
+  *oneMinusCosTheta = m;
+  if (r2 == 0.0f) return c.axis;
+  float sinTheta = std::sqrt(std::max(0.0f, m * (2.0f - m)));
+  return (1.0f - m) * c.axis + (sinTheta / std::sqrt(r2)) * (d.x * c.t1 + d.y * c.t2);
+}
+
+}  // namespace
+
+// Area lights: each pixel casts lightSamples rays over the light's cone, the n points of a
+// Hammersley set ((k + 1/2) / n, radical inverse of k) shifted modulo 1 by a per-pixel offset
+// (Cranley-Patterson rotation, which keeps the estimate unbiased), carried onto the disc by the
+// concentric map and onto the cone by equal solid angle. A straight shadow edge across the disc
+// then errs by O(log n / n) rather than a random set's O(1/sqrt(n)). The offset hashes the seed
+// with the pixel's position and normal, so results are the same on every run, thread count and
+// pixel order. Rays go to rtcOccluded1M in streams of whole pixels (each pixel's rays share an
+// origin and are coherent). Measured rays/s: docs/lab.md, "Area lights in the reference".
+void ReferenceTracer::VisibleSamples(const glm::vec3* positions, const glm::vec3* normals, const uint8_t* valid, size_t count,
+                                     const ReferenceLight& light, uint16_t* out) const {
+  if (count == 0) return;
+  detail::ValidateVisibilityInputs("ReferenceTracer::VisibleSamples", positions, normals, valid, count, light, out);
+  if (!light.IsArea()) {
+    std::vector<uint8_t> hard(count, 0);
+    Visibility(positions, normals, valid, count, light, hard.data());
+    for (size_t i = 0; i < count; ++i)
+      if (!valid || valid[i]) out[i] = hard[i];
+    return;
+  }
+  const Impl& I = *impl_;
+  const float eps = I.epsilon;
+  const unsigned n = I.samples;
+  glm::dvec3 spotAxis(0);
+  if (light.type != ReferenceLight::Point) spotAxis = glm::normalize(glm::dvec3(light.direction));
+  const double sunOneMinusCos = 2.0 * std::pow(std::sin(glm::radians(double(light.size)) / 4.0), 2.0);
+
+  const size_t pixelsPerChunk = std::max<size_t>(1, 4096 / n);
+  const size_t chunks = (count + pixelsPerChunk - 1) / pixelsPerChunk;
+  std::atomic<size_t> nextChunk{0};
+  std::atomic<uint64_t> rayCount{0};
+  auto work = [&] {
+    std::vector<RTCRay> rays(pixelsPerChunk * n);
+    std::vector<uint32_t> owner(pixelsPerChunk * n);
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    uint64_t total = 0;
+    for (size_t c; (c = nextChunk.fetch_add(1)) < chunks;) {
+      const size_t begin = c * pixelsPerChunk, end = std::min(count, begin + pixelsPerChunk);
+      unsigned cast = 0;
+      for (size_t i = begin; i < end; ++i) {
+        if (valid && !valid[i]) continue;
+        out[i] = 0;
+        const glm::vec3 p = positions[i];
+        const glm::vec3 normal = glm::normalize(normals[i]);
+        const glm::vec3 origin = p + normal * eps;
+        LightCone cone;
+        glm::dvec3 axis;
+        double oneMinusCos;
+        if (light.type == ReferenceLight::Directional) {
+          axis = -spotAxis;
+          oneMinusCos = sunOneMinusCos;
+        } else {
+          glm::dvec3 toCentre = glm::dvec3(light.position) - glm::dvec3(origin);
+          double distance = glm::length(toCentre);
+          // Inside the sphere (or within epsilon of it) the whole light is seen, as a hard light
+          // within epsilon of the surface is.
+          if (!(distance > double(light.size) + eps)) {
+            out[i] = uint16_t(n);
+            continue;
+          }
+          axis = toCentre / distance;
+          if (light.type == ReferenceLight::Spot &&
+              glm::dot(glm::normalize(glm::dvec3(light.position) - glm::dvec3(p)), -spotAxis) < light.spotCosHalfAngle)
+            continue;
+          double s = double(light.size) / distance;
+          oneMinusCos = s * s / (1.0 + std::sqrt(1.0 - s * s));
+          cone.distance = float(distance);
+          cone.radius = light.size;
+        }
+        // Duff et al.'s branchless orthonormal basis around the axis.
+        double sign = std::copysign(1.0, axis.z), q = -1.0 / (sign + axis.z), r = axis.x * axis.y * q;
+        cone.axis = glm::vec3(axis);
+        cone.t1 = glm::vec3(glm::dvec3(1.0 + sign * axis.x * axis.x * q, sign * r, -sign * axis.x));
+        cone.t2 = glm::vec3(glm::dvec3(r, sign + axis.y * axis.y * q, -axis.y));
+        cone.oneMinusCos = float(oneMinusCos);
+        const uint64_t h = SplitMix(I.seed ^ Bits(p) ^ SplitMix(Bits(normal)));
+        const float su = float(h >> 40) * 0x1p-24f, sv = float((h >> 8) & 0xffffffu) * 0x1p-24f;
+        unsigned seen = 0;
+        for (unsigned k = 0; k < n; ++k) {
+          float u = (float(k) + 0.5f) / float(n) + su, v = RadicalInverse2(k) + sv;
+          float m;
+          glm::vec3 d = ConeDirection(cone, u >= 1.0f ? u - 1.0f : u, v >= 1.0f ? v - 1.0f : v, &m);
+          if (!(glm::dot(normal, d) > 0.0f)) continue;  // below the surface: its own shadow
+          float tfar = std::numeric_limits<float>::infinity();
+          if (light.type != ReferenceLight::Directional) {
+            // Up to the sphere's near side, less epsilon as for a hard light.
+            float sin2 = m * (2.0f - m);
+            float t = cone.distance * (1.0f - m) - std::sqrt(std::max(0.0f, cone.radius * cone.radius - cone.distance * cone.distance * sin2));
+            tfar = t - eps;
+            if (!(tfar > eps)) {
+              ++seen;
+              continue;
+            }
+          }
+          SetShadowRay(rays[cast], origin, d, eps, tfar, cast);
+          owner[cast++] = uint32_t(i - begin);
+        }
+        out[i] = uint16_t(seen);
+      }
+      if (cast == 0) continue;
+      rtcOccluded1M(I.top, &context, rays.data(), cast, sizeof(RTCRay));
+      for (unsigned k = 0; k < cast; ++k)
+        if (rays[k].tfar >= 0.0f) ++out[begin + owner[k]];
+      total += cast;
+    }
+    rayCount += total;
+  };
+  OnThreads(I.threads, chunks, work);
+  I.traced += rayCount.load();
+  I.Check("tracing area-light shadow rays");
 }
 
 }  // namespace sp::eval

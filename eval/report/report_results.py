@@ -44,7 +44,9 @@ METRICS = [
            "misclassified % of the judged pixels away from the cube-face edges; a seam band "
            "figure above it points at errors of the seams themselves"),
     Metric("mean_abs_error", "mean |error|", "", "{:.4f}",
-           "mean absolute difference of the shadow term (0 = shadow, 1 = lit) from the reference"),
+           "mean absolute difference of the shadow term (0 = shadow, 1 = lit) from the reference; "
+           "with an area light (checks.light_size > 0) the reference is the fraction of the light "
+           "visible, so this judges the penumbra's shape, not only which side of 0.5 a pixel is"),
     Metric("texels_per_pixel_median", "texels/px median", "", "{:.3g}",
            "shadow-map texels per screen pixel, median over receiving pixels; below 1 = "
            "undersampled (blocky, jagged shadow edges)"),

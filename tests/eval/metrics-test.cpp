@@ -42,6 +42,42 @@ TEST(LabMetrics, AccuracySplitsFalseLitAndFalseShadowOverReceivingPixelsOnly) {
   EXPECT_NEAR(a.meanAbsError(), err / 8, 1e-6);
 }
 
+// A fractional reference (an area light's penumbra): the mean absolute error is against the
+// fraction, and a pixel is misclassified when it and the reference fall on different sides of 0.5.
+TEST(LabMetrics, MeanAbsoluteErrorAgainstAFractionalReference) {
+  tech::LabBuffers b = Frame(7, 1);
+  std::vector<float> ref = {1.0f, 0.75f, 0.5f, 0.25f, 0.0f, 0.625f, 0.5f};
+  b.visibility = {1.0f, 0.5f, 0.5f, 0.5f, 0.25f, 0.375f, 0.0f};
+  b.normal[6].w = 0.0f;  // not judged
+  eval::Accuracy a = eval::MeasureAccuracy(b, ref.data());
+  EXPECT_EQ(a.receiving, 6u);
+  EXPECT_EQ(a.falseLit, 1u);     // pixel 3: 0.5 against 0.25
+  EXPECT_EQ(a.falseShadow, 1u);  // pixel 5: 0.375 against 0.625
+  EXPECT_DOUBLE_EQ(a.meanAbsError(), (0.0 + 0.25 + 0.0 + 0.25 + 0.25 + 0.25) / 6);
+
+  // A reference of 0/1 bytes judges exactly as the same values in float.
+  std::vector<uint8_t> bytes = {1, 1, 0, 0, 0, 1, 1};
+  std::vector<float> floats(bytes.begin(), bytes.end());
+  eval::Accuracy x = eval::MeasureAccuracy(b, bytes.data()), y = eval::MeasureAccuracy(b, floats.data());
+  EXPECT_EQ(x.falseLit, y.falseLit);
+  EXPECT_EQ(x.falseShadow, y.falseShadow);
+  EXPECT_EQ(x.absErrorSum, y.absErrorSum);
+
+  // The reference picture shades with the fraction: half the sun is between none and all of it.
+  scene::DirectionalLight sun;
+  tech::LabBuffers one = Frame(1, 1);
+  auto red = [&](float v) { return int(eval::ReferenceImage(one, &v, sun)[0]); };
+  EXPECT_LT(red(0.0f), red(0.5f));
+  EXPECT_LT(red(0.5f), red(1.0f));
+  // The error map: a technique matching a fractional reference shows no tint.
+  uint32_t h = 0;
+  float half = 0.5f;
+  one.visibility = {0.5f};
+  std::vector<uint8_t> same = eval::ErrorHeatMap(one, &half, &h);
+  EXPECT_EQ(same[0], same[1]);
+  EXPECT_EQ(same[1], same[2]);
+}
+
 TEST(LabMetrics, HistogramPercentilesAreWithinABinOfTheExactOnesAndExactForConstantData) {
   eval::LogHistogram h;
   std::vector<double> v;

@@ -183,9 +183,9 @@ class GltfLights : public MalformedGltf {
   }
   json GoodLights() {
     return json::parse(R"([
-      {"type": "point", "color": [1, 0.5, 0.25], "intensity": 4, "range": 7},
+      {"type": "point", "color": [1, 0.5, 0.25], "intensity": 4, "range": 7, "extras": {"radius": 0.25}},
       {"type": "spot", "name": "lamp", "intensity": 2, "spot": {"innerConeAngle": 0.2, "outerConeAngle": 0.6}},
-      {"type": "directional", "intensity": 3}])");
+      {"type": "directional", "intensity": 3, "extras": {"angularDiameterDegrees": 0.53}}])");
   }
 };
 
@@ -208,6 +208,10 @@ TEST_F(GltfLights, PointSpotAndDirectionalLightsLoad) {
   // (0,0,0)-(1,1,0); from (0,4,0) the farthest corner is (1,0,0)).
   EXPECT_NEAR(sp.range, std::sqrt(17.0f), 1e-5f);
   EXPECT_NEAR(glm::distance(glm::normalize(s.light.direction), glm::vec3(-1, 0, 0)), 0.0f, 1e-5f);
+  // Sizes for soft shadows from the lights' extras; none given: 0 (hard).
+  EXPECT_EQ(p.radius, 0.25f);
+  EXPECT_EQ(sp.radius, 0.0f);
+  EXPECT_EQ(s.light.angularDiameterDegrees, 0.53f);
 }
 
 TEST_F(GltfLights, BadLightDataIsAnErrorNamingFileAndLight) {
@@ -225,6 +229,9 @@ TEST_F(GltfLights, BadLightDataIsAnErrorNamingFileAndLight) {
       {"inner-past-outer", [](json& l) { l[1]["spot"]["innerConeAngle"] = 0.7; }, "cone"},
       {"negative-inner", [](json& l) { l[1]["spot"]["innerConeAngle"] = -0.1; }, "cone"},
       {"unknown-type", [](json& l) { l[0]["type"] = "area"; }, "type"},
+      {"negative-radius", [](json& l) { l[0]["extras"]["radius"] = -0.5; }, "extras.radius"},
+      {"text-radius", [](json& l) { l[1]["extras"]["radius"] = "big"; }, "extras.radius (not a number)"},
+      {"sun-too-wide", [](json& l) { l[2]["extras"]["angularDiameterDegrees"] = 180; }, "extras.angularDiameterDegrees"},
   };
   for (const Case& c : cases) {
     json lights = GoodLights();

@@ -67,6 +67,10 @@ struct DirectionalLight {
   glm::vec3 direction{-0.4f, -1.0f, -0.3f};  // the way the light travels
   glm::vec3 color{1.0f, 0.96f, 0.9f};
   float ambient = 0.18f;
+  // The light's source as a disc of this angular diameter around `direction`, in degrees (the
+  // sun: 0.53); 0 = an ideal directional light with hard shadows. Soft-shadow techniques and the
+  // lab's ray-traced reference read it, so both judge the same penumbra.
+  float angularDiameterDegrees = 0.0f;
 
   glm::vec3 towardsLight() const { return -glm::normalize(direction); }
 };
@@ -84,6 +88,7 @@ struct PointLight {
   glm::vec3 position{0.0f};
   glm::vec3 color{1.0f};  // linear intensity at the light, before attenuation
   float range = 10.0f;    // distance where the light's contribution reaches zero: the shadow far plane
+  float radius = 0.0f;    // the emitter as a sphere of this radius (world units), 0 = a point: hard shadows
 };
 
 // A spot light: a point light limited to a cone about `direction`.
@@ -94,6 +99,7 @@ struct SpotLight {
   float range = 10.0f;                     // as PointLight::range
   float innerConeAngle = 0.0f;             // radians from the axis: full intensity inside
   float outerConeAngle = 0.7853982f;       // radians, in (innerConeAngle, pi/2]: no light outside
+  float radius = 0.0f;                     // as PointLight::radius
 };
 
 // A camera position and look-at point at one time of a path.
