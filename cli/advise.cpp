@@ -136,8 +136,8 @@ int RunAdvise(const Args& a) {
   std::printf("advise: %s on %s, %ux%u, %u frames; budget %s; minimizing %s%s\n", o.scene.c_str(), BackendName(o.backend), o.width, o.height,
               o.frames, budgets.c_str(), advise::MinimizeName(so.minimize),
               so.minimize == advise::Minimize::Ms ? (" (GPU ms within " + std::to_string(int(so.noise * 100 + 0.5)) + " % are ties: less memory wins)").c_str() : "");
-  std::printf("configurations: %zu measured by the search (%zu new, %zu from the cache); %zu further timing runs (%zu new)\n\n", m.size(),
-              r.newMeasurements, r.fromCache, r.timingRuns + r.timingRunsFromCache, r.timingRuns);
+  std::printf("configurations: %zu measured by the search (%zu new, %zu from the cache), %zu refused by their technique; %zu further timing runs (%zu new)\n\n",
+              m.size(), r.newMeasurements, r.fromCache, r.refused, r.timingRuns + r.timingRunsFromCache, r.timingRuns);
   std::printf("Pareto front (%s against %s):\n\n%s\n", advise::MinimizeName(so.minimize), so.budgets[0].metric.c_str(), kHeader);
   for (size_t i : r.front) std::printf("%s\n", Row(m[i], so, r.selection.best == i ? "**>**" : " ").c_str());
 
@@ -172,6 +172,7 @@ int RunAdvise(const Args& a) {
   doc["revision"] = r.revision;
   doc["new_measurements"] = r.newMeasurements;
   doc["from_cache"] = r.fromCache;
+  doc["refused"] = r.refused;
   doc["timing_runs"] = r.timingRuns + r.timingRunsFromCache;
   doc["new_timing_runs"] = r.timingRuns;
   doc["planned"] = r.planned;

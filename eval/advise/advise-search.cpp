@@ -275,11 +275,29 @@ SearchResult Search(const SearchOptions& o, const std::function<void(const std::
     return rec;
   };
 
+  // A lattice step can reach a combination the technique refuses (filter=box with kernel=17, an
+  // accel with filter=pcss): not a point of the space, so it is skipped and said why. A refused
+  // default configuration is the user's error and stops the search.
+  std::set<Config> refused, defaults;
+  std::vector<Config> defaultList;  // in the order of --techniques
+  for (const Tech& t : techs) {
+    Config d{t.spec.name, t.spec.params};
+    for (const Axis& a : t.axes) d.params[a.name] = a.defaultValue;
+    if (defaults.insert(d).second) defaultList.push_back(d);
+  }
   auto measure = [&](const Config& c) {
-    if (index.count(c)) return;
+    if (index.count(c) || refused.count(c)) return;
     Measurement m;
     m.config = c;
-    m.record = record(c, 0);
+    try {
+      m.record = record(c, 0);
+    } catch (const std::invalid_argument& e) {
+      if (defaults.count(c)) throw;
+      refused.insert(c);
+      ++res.refused;
+      say("skipped " + ShortText(c) + ": the technique refuses it (" + e.what() + ")");
+      return;
+    }
     m.metrics = MetricsOf(m.record);
     // A parameter that does nothing in this configuration (kernel under the 2x2 hardware filter)
     // renders the same pictures: such a configuration is the earlier one again, and only timing
@@ -310,11 +328,7 @@ SearchResult Search(const SearchOptions& o, const std::function<void(const std::
   };
 
   // Each technique's all-default configuration: what the recommendation is judged against.
-  for (const Tech& t : techs) {
-    Config d{t.spec.name, t.spec.params};
-    for (const Axis& a : t.axes) d.params[a.name] = a.defaultValue;
-    plan(d);
-  }
+  for (const Config& d : defaultList) plan(d);
   for (const Tech& t : techs)
     for (Config c : o.exhaustive ? FullGrid(t.spec.name, t.axes) : CoarseGrid(t.spec.name, t.axes)) {
       c.params.insert(t.spec.params.begin(), t.spec.params.end());

@@ -39,6 +39,7 @@ struct SearchResult {
   std::vector<size_t> front;
   size_t newMeasurements = 0, fromCache = 0, planned = 0;
   size_t timingRuns = 0, timingRunsFromCache = 0;  // the confirmation's further runs
+  size_t refused = 0;  // lattice points the technique refused to configure (skipped)
   std::vector<size_t> defaults;  // each technique's all-default configuration (measured too)
   std::filesystem::path cacheDir;
   std::string revision;

@@ -25,6 +25,13 @@ foreach(SP_BAD IN ITEMS "budget_metric|--budget acne=1|--budget 'acne=1': unknow
   set_tests_properties(cli.advise_bad_${SP_BAD_NAME}_names_it PROPERTIES ENVIRONMENT "${SP_SHADER_CACHE_ENV}")
 endforeach()
 
+# A lattice that reaches configurations the technique refuses (box kernels above 15) skips them,
+# saying why, and finishes.
+add_test(NAME cli.advise_skips_configurations_the_technique_refuses
+  COMMAND bash -c "out=$(\"$0\" advise --scene default --techniques basic:filter=box --axes kernel --exhaustive --budget misclassified=100 --size 16x16 --frames 1 --confirm 1 --no-report --out \"$1/refused\" 2>&1); rc=$?; echo \"$out\"; [ $rc -eq 0 ] && echo \"$out\" | grep -qF 'skipped basic:filter=box:kernel=17: the technique refuses it' && echo \"$out\" | grep -qF ', 8 refused by their technique'"
+          $<TARGET_FILE:shadowport> ${SP_ADVISE_TEST_DIR})
+set_tests_properties(cli.advise_skips_configurations_the_technique_refuses PROPERTIES ENVIRONMENT "${SP_SHADER_CACHE_ENV}" TIMEOUT 300)
+
 if(SP_REPORT_PYTHON)
   # The search against the exhaustive sweep (same optimum under --minimize memory), the cache (a
   # rerun measures nothing), Ctrl-C and resume, an impossible budget, and the page.
