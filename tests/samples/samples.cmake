@@ -47,9 +47,12 @@ foreach(technique csm sdsm)
 endforeach()
 
 # add_subdirectory(shadowport) from another project: configure, build the RHI and one sample
-# (a second compile of the library, so it runs alone at the end), run it.
+# (a second compile of the library, so it runs alone at the end), run it. With the same flags as
+# this build (C++20 without GNU extensions, as the top level sets) and this build's compiler
+# launcher, a ccache build (./shadowport uses one when ccache is installed) compiles the library
+# from the cache instead of a second time.
 add_test(NAME samples.build_through_add_subdirectory
-  COMMAND bash -c "mkdir -p \"$3\" && cmake -S \"$0\" -B \"$1\" -DCMAKE_BUILD_TYPE=Release -DSHADOWPORT_SOURCE_DIR=\"$2\" >/dev/null && cmake --build \"$1\" -j \"$(nproc)\" --target shadow-map && \"$1/shadow-map/shadow-map\" --backend gl --size 128 --out \"$3/subdirectory.png\""
+  COMMAND bash -c "mkdir -p \"$3\" && cmake -S \"$0\" -B \"$1\" -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_EXTENSIONS=OFF -DCMAKE_CXX_COMPILER_LAUNCHER=\"$4\" -DSHADOWPORT_SOURCE_DIR=\"$2\" >/dev/null && cmake --build \"$1\" -j \"$(nproc)\" --target shadow-map && \"$1/shadow-map/shadow-map\" --backend gl --size 128 --out \"$3/subdirectory.png\""
           ${CMAKE_CURRENT_SOURCE_DIR}/samples/subdirectory-consumer ${PROJECT_BINARY_DIR}/samples-subdirectory
-          ${PROJECT_SOURCE_DIR} ${SP_SAMPLES_OUT})
+          ${PROJECT_SOURCE_DIR} ${SP_SAMPLES_OUT} "${CMAKE_CXX_COMPILER_LAUNCHER}")
 set_tests_properties(samples.build_through_add_subdirectory PROPERTIES TIMEOUT 1800 RUN_SERIAL TRUE)
