@@ -17,9 +17,11 @@
 // (the edge snaps to a texel boundary in the map).
 #include <cstdio>
 #include <glm/ext/matrix_transform.hpp>
+#include <glm/gtc/constants.hpp>
 
 #include "backend-test.h"
 #include "cross-backend.h"
+#include "reference.h"
 #include <sp/tech/renderer.h>
 
 namespace sp::test {
@@ -179,6 +181,85 @@ TEST_P(PcssTest, MaxKernelClampsThePenumbra) {
   scene::Scene s = PlankScene(false);
   Ramp r = MeasureRamp(Render("basic", s, {{"light_size", "4"}, {"pcss_max_kernel", "5"}}));
   EXPECT_NEAR(r.width(), 5 * SunTexel(), 0.04 * 5 * SunTexel());
+}
+
+// PCSS against the ray-traced area light (eval/reference with ReferenceLight::size) on the same
+// floor pixels. Under a disc light a straight edge gives the circular-segment profile
+//   v(u) = 1/2 + (u sqrt(1 - u^2) + asin u) / pi,  u = x / R,  R the penumbra's half-width,
+// PCSS's box the linear ramp 1/2 + u/2 of the same width: the two agree past the penumbra
+// (exactly 0 and 1), cross 1/2 at the same x, and inside it differ by the shapes' mean gap, which
+// is computed here (0.0378). Tolerance 0.008: a 2 % error in the width (the plank's thickness,
+// above) moves the gap by 0.005, the reference's sampling error is 0.4 % RMS; a penumbra off by
+// a factor 1.25 either way would miss it (0.056 wider, 0.030 narrower).
+double SegmentVsLinearGap() {
+  const int n = 20000;
+  double sum = 0.0;
+  for (int k = 0; k < n; ++k) {
+    double u = -1.0 + 2.0 * (k + 0.5) / n;
+    sum += std::abs((u * std::sqrt(1.0 - u * u) + std::asin(u)) / glm::pi<double>() - 0.5 * u);
+  }
+  return sum / n;
+}
+
+void ExpectMatchesTheAreaLight(const std::string& what, const tech::LabBuffers& lab, const scene::Scene& s, const eval::ReferenceLight& light,
+                               double width, double texel) {
+  std::vector<glm::vec3> pos(lab.size()), nrm(lab.size());
+  std::vector<uint8_t> valid(lab.size());
+  for (size_t i = 0; i < lab.size(); ++i) {
+    pos[i] = glm::vec3(lab.position[i]);
+    nrm[i] = glm::vec3(lab.normal[i]);
+    valid[i] = lab.drawn(i) && std::abs(lab.position[i].y) < 1e-3f;  // the floor
+  }
+  std::vector<float> ref(lab.size(), 0.0f);
+  eval::ReferenceTracer(s).Visibility(pos.data(), nrm.data(), valid.data(), lab.size(), light, ref.data());
+  // The central rows, as MeasureRamp reads them.
+  double gap = 0.0, outside = 0.0, refHalf = 0.0, pcssHalf = 0.0;
+  int inside = 0, past = 0, rows = 0;
+  for (uint32_t y = lab.height / 2 - 3; y < lab.height / 2 + 3; ++y, ++rows) {
+    float prevX = 0, prevRef = -1, prevPcss = -1;
+    for (uint32_t x = 0; x < lab.width; ++x) {
+      size_t i = size_t(y) * lab.width + x;
+      if (!valid[i]) continue;
+      float px = lab.position[i].x;
+      if (std::abs(px) < 0.5 * width) {
+        gap += std::abs(lab.visibility[i] - ref[i]);
+        ++inside;
+      } else if (std::abs(px) > 0.5 * width + texel) {
+        outside = std::max(outside, double(std::abs(lab.visibility[i] - ref[i])));
+        ++past;
+      }
+      // Where each crosses 1/2, interpolated between neighbouring pixels.
+      if (prevRef >= 0 && prevRef < 0.5f && ref[i] >= 0.5f) refHalf += prevX + (0.5 - prevRef) / (ref[i] - prevRef) * (px - prevX);
+      if (prevPcss >= 0 && prevPcss < 0.5f && lab.visibility[i] >= 0.5f)
+        pcssHalf += prevX + (0.5 - prevPcss) / (lab.visibility[i] - prevPcss) * (px - prevX);
+      prevX = px, prevRef = ref[i], prevPcss = lab.visibility[i];
+    }
+  }
+  gap /= std::max(inside, 1);
+  const double want = SegmentVsLinearGap();
+  std::printf("%s: mean |pcss - area-light reference| over the penumbra %.4f (%d pixels; a disc against a box of the same width: %.4f), "
+              "largest past it %.2g, 1/2 crossings %.5f / %.5f\n",
+              what.c_str(), gap, inside, want, outside, pcssHalf / rows, refHalf / rows);
+  EXPECT_GT(inside, 60) << what;
+  EXPECT_GT(past, 200) << what;
+  EXPECT_NEAR(gap, want, 0.008) << what;
+  // Past the penumbra (and a texel for the map's edge position): full light and umbra on both
+  // sides, up to the float rounding of the box's weights (PCSS divides their sum by w^2).
+  EXPECT_LE(outside, 1e-5) << what;
+  const double pixel = 2.0 * std::tan(glm::radians(25.0)) / kSize;
+  EXPECT_NEAR(pcssHalf / rows, refHalf / rows, texel + pixel) << what;
+}
+
+TEST_P(PcssTest, SunAndSpotPenumbraeMatchTheRayTracedAreaLight) {
+  scene::Scene sun = PlankScene(false);
+  sun.light.angularDiameterDegrees = 4.0f;
+  ExpectMatchesTheAreaLight("basic light_size=4", Render("basic", sun, {{"light_size", "4"}}), sun, eval::ReferenceLight::FromScene(sun.light),
+                            SunPenumbra(4), SunTexel());
+  scene::Scene spot = PlankScene(true);
+  const scene::SpotLight& l = spot.spotLights[0];
+  ExpectMatchesTheAreaLight("spot light_size=0.1", Render("spot", spot, {{"light_size", "0.1"}}), spot,
+                            eval::ReferenceLight::MakeSpot(l.position, l.direction, std::cos(l.outerConeAngle), 0.1f), SpotPenumbra(0.1),
+                            SpotTexel());
 }
 
 SP_INSTANTIATE_BACKEND_TESTS(PcssTest);
