@@ -2,7 +2,8 @@
 // local lights (common/local-lights.hlsli). Compiled after the technique's include, which defines
 //   float ShadowVisibility(float3 worldPos, float3 worldNormal, float4 svPosition)
 // returning 1 for lit and 0 for shadowed (filtered techniques return values in between), and,
-// for the lab, ShadowLocate and ShadowTexel (common/shadow-lookup.hlsli).
+// for the lab, ShadowLocate and ShadowTexel (common/shadow-lookup.hlsli). A technique that
+// defines SHAFTS=1 also defines float ShadowInScatter(float3 worldPos): sun shafts, added.
 //
 // SP_LAB=1 compiles the lab's variant: the same colour plus what the measurements need, one
 // render target each (techniques/renderer.h, LabBuffers). The normal variant is unchanged by it.
@@ -42,6 +43,9 @@ float4 PSMain(VSOut i) : SV_Target {
   // Where ndotl is 0 the visibility does not change the colour.
   float visibility = ShadowVisibility(i.worldPos, n, i.pos);
   float3 color = albedo * (ambient + lightColor * ndotl * visibility + LocalLighting(i.worldPos, n));
+#if defined(SHAFTS) && SHAFTS
+  color += lightColor * ShadowInScatter(i.worldPos);
+#endif
   return float4(color, 1.0);
 }
 
@@ -90,6 +94,9 @@ LabOut PSMain(VSOut i) {
   LabOut o;
   // The same expression as the normal variant, so the colour is the same.
   o.color = float4(albedo * (ambient + lightColor * ndotl * visibility + LocalLighting(i.worldPos, n)), 1.0);
+#if defined(SHAFTS) && SHAFTS
+  o.color.rgb += lightColor * ShadowInScatter(i.worldPos);
+#endif
   o.position = float4(i.worldPos, 1.0);
   o.normal = float4(n, labNdotl);
   o.visibility = labVisibility;

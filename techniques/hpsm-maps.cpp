@@ -15,7 +15,8 @@ struct BuildConstants {
 };
 static_assert(sizeof(BuildConstants) == 32);
 
-constexpr uint32_t kCounterBytes = 5 * 4;  // kHpsmDecisions words
+// kHpsmDecisions words, then common/shafts.hlsli's kShaftLookedUp and kShaftSkipped.
+constexpr uint32_t kCounterBytes = HpsmMaps::kCounterWords * 4;
 constexpr uint32_t kCounterSlot = 7;       // u7: above every render target the lit passes bind
 
 [[noreturn]] void Bad(const std::string& param, const std::string& why) { throw std::invalid_argument(param + ": " + why); }
@@ -133,13 +134,18 @@ void HpsmMaps::BindCounters(DeviceContext& ctx) {
   ctx.OMSetRenderTargetsAndUnorderedAccessViews(KEEP_RENDER_TARGETS_AND_DEPTH_STENCIL, nullptr, nullptr, kCounterSlot, 1, uavs, nullptr);
 }
 
-HpsmCounts HpsmMaps::ReadCounters(DeviceContext& ctx) {
+std::array<uint32_t, HpsmMaps::kCounterWords> HpsmMaps::ReadCounterWords(DeviceContext& ctx) {
   ctx.CopyResource(countersStaging_.get(), counters_.get());
   MAPPED_SUBRESOURCE m;
   ctx.Map(countersStaging_.get(), 0, MAP_READ, 0, &m);
-  uint32_t words[5];
-  std::memcpy(words, m.pData, sizeof(words));
+  std::array<uint32_t, kCounterWords> words;
+  std::memcpy(words.data(), m.pData, sizeof(words));
   ctx.Unmap(countersStaging_.get(), 0);
+  return words;
+}
+
+HpsmCounts HpsmMaps::ReadCounters(DeviceContext& ctx) {
+  std::array<uint32_t, kCounterWords> words = ReadCounterWords(ctx);
   HpsmCounts c;
   for (int i = 0; i < 5; ++i) c.n[i] = words[i];
   return c;

@@ -2,6 +2,7 @@
 // secondary maps of common/hpsm.hlsli (hybrid min/max plane shadow maps, or the hierarchical
 // min/max baseline), their parameters, their build pass and the lit pass's decision counters.
 #pragma once
+#include <array>
 #include <sp/tech/hpsm-counters.h>
 #include <sp/tech/technique.h>
 
@@ -41,6 +42,9 @@ class HpsmMaps {
   // Binds the counters as the lit pass's u7 (keeping its render targets).
   void BindCounters(DeviceContext& ctx);
   HpsmCounts ReadCounters(DeviceContext& ctx);
+  // Every word of the counters' buffer: the decisions, then the sun shafts' (common/shafts.hlsli).
+  static constexpr uint32_t kCounterWords = 8;
+  std::array<uint32_t, kCounterWords> ReadCounterWords(DeviceContext& ctx);
   uint64_t memoryBytes() const;
   uint32_t blocksX() const { return blocksX_; }
   uint32_t blocksY() const { return blocksY_; }

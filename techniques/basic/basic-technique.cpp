@@ -3,11 +3,14 @@
 // hardware comparison filter (the default, the reference point every other technique is measured
 // against) or with the PCF library's filters, PCSS included (the sun as a disc of `light_size`
 // degrees; docs/techniques.md); optionally a secondary map decides whole footprints before the
-// filter runs (accel: hpsm or the min/max baseline; techniques/hpsm-maps.h).
+// filter runs (accel: hpsm or the min/max baseline; techniques/hpsm-maps.h). shafts=1 adds sun
+// shafts marched through the map, optionally walked per secondary texel (shaders-hlsl/common/shafts.hlsli).
 #include <glm/ext/matrix_clip_space.hpp>
+#include <stdexcept>
 #include <glm/ext/matrix_transform.hpp>
 
 #include "pcf-params.h"
+#include <sp/tech/shaft-counters.h>
 #include <sp/tech/technique.h>
 
 #include "hpsm-maps.h"
@@ -15,7 +18,7 @@
 namespace sp::tech {
 namespace {
 
-class BasicTechnique final : public Technique, public HpsmCounterSource {
+class BasicTechnique final : public Technique, public HpsmCounterSource, public ShaftCounterSource {
  public:
   std::string Name() const override { return "basic"; }
 
@@ -30,6 +33,10 @@ class BasicTechnique final : public Technique, public HpsmCounterSource {
     };
     for (const ParamSpec& p : PcssParamSpecs(PcssLight::Directional)) specs.push_back(p);
     for (ParamSpec& h : HpsmParams()) specs.push_back(h);
+    specs.push_back({ParamSpec::Int, "shafts", "1: add sun shafts, single scattering of the sun in a homogeneous medium marched through the shadow map", "0", 0, 1, {}});
+    specs.push_back({ParamSpec::Int, "shaft_steps", "shafts: samples per view ray, camera to surface", "64", 1, 4096, {}});
+    specs.push_back({ParamSpec::Float, "shaft_density", "shafts: scattering coefficient per world unit (isotropic, no phase function)", "0.02", 0, 100, {}});
+    specs.push_back({ParamSpec::Choice, "shaft_accel", "shafts: decide runs of steps per secondary-map texel without lookups (the map of accel, or one built for the shafts)", "none", 0, 0, {"none", "hpsm", "minmax"}});
     return specs;
   }
 
@@ -43,10 +50,11 @@ class BasicTechnique final : public Technique, public HpsmCounterSource {
     // The PCF library reads Texture2DArray; a one-slice array view of the same map.
     arraySrv_ = MakeSliceArraySrv(device, map_.texture.get());
     hpsm_ = ReadHpsmSettings(p, filter_, kernel_, resolution_);
+    ReadShaftSettings(p);
     hpsmMaps_.reset();
-    if (hpsm_.accel != ShadowAccel::None) {
+    if (maps_.accel != ShadowAccel::None) {
       device_ = &device;
-      hpsmMaps_ = std::make_unique<HpsmMaps>(device, hpsm_, resolution_, resolution_, 1);
+      hpsmMaps_ = std::make_unique<HpsmMaps>(device, maps_, resolution_, resolution_, 1);
     }
 
     RASTERIZER_DESC rd;
@@ -67,7 +75,7 @@ class BasicTechnique final : public Technique, public HpsmCounterSource {
     OrthoFit fit = FitToScene(frame.scene->bounds, frame.light.direction);
     lightViewProj_ = fit.viewProj;
     Constants c{lightViewProj_, glm::vec2(float(resolution_)), glm::vec2(0.0f),
-                OrthoPcssConstants(pcss_, fit.nearZ, fit.farZ, fit.extent / float(resolution_))};
+                OrthoPcssConstants(pcss_, fit.nearZ, fit.farZ, fit.extent / float(resolution_)), glm::vec4(shaftDensity_, float(shaftSteps_), 0, 0)};
     ctx.UpdateSubresource(constants_.get(), 0, nullptr, &c, 0, 0);
 
     // The map (t0) and the secondary map (t1) are read by the previous frame's lit pass; unbind
@@ -94,6 +102,14 @@ class BasicTechnique final : public Technique, public HpsmCounterSource {
     bool sized = filter_ != 0 && filter_ != kPcssFilter;
     std::vector<hlsl::Define> d = {{"SHADOW_FILTER", std::to_string(filter_)}, {"SHADOW_KERNEL", std::to_string(sized ? kernel_ : 3)}};
     for (hlsl::Define& h : HpsmDefines(hpsm_)) d.push_back(h);
+    if (shafts_) {
+      bool accel = shaftAccel_ != ShadowAccel::None;
+      d.push_back({"SHAFTS", "1"});
+      d.push_back({"SHAFT_ACCEL", !accel ? "0" : shaftAccel_ == ShadowAccel::Hpsm ? "1" : "2"});
+      d.push_back({"SHAFT_BLOCK", std::to_string(maps_.block)});
+      d.push_back({"SHAFT_REACH", std::to_string(maps_.reach)});
+      d.push_back({"SHAFT_COUNTERS", accel && maps_.counters ? "1" : "0"});
+    }
     return d;
   }
 
@@ -109,9 +125,44 @@ class BasicTechnique final : public Technique, public HpsmCounterSource {
   }
 
   HpsmCounts HpsmDecisions() const override { return hpsmMaps_ ? hpsmMaps_->ReadCounters(*device_->GetImmediateContext()) : HpsmCounts{}; }
+  ShaftCounts ShaftSteps() const override {
+    if (!hpsmMaps_) return {};
+    auto w = hpsmMaps_->ReadCounterWords(*device_->GetImmediateContext());
+    return {w[5], w[6]};  // kShaftLookedUp, kShaftSkipped
+  }
   std::vector<ShadowLayer> Layers() const override { return {{resolution_, resolution_}}; }
 
  private:
+  // shafts, shaft_steps, shaft_density, shaft_accel; maps_: the secondary map's settings, accel's
+  // or, with accel=none, one built for the shafts alone (no filter reach, blocks of 8 by default).
+  void ReadShaftSettings(const ParamValues& p) {
+    shafts_ = p.getInt("shafts") != 0;
+    shaftSteps_ = p.getInt("shaft_steps");
+    shaftDensity_ = p.getFloat("shaft_density");
+    const std::string& a = p.getChoice("shaft_accel");
+    shaftAccel_ = a == "hpsm" ? ShadowAccel::Hpsm : a == "minmax" ? ShadowAccel::MinMax : ShadowAccel::None;
+    maps_ = hpsm_;
+    if (!shafts_) {
+      if (shaftAccel_ != ShadowAccel::None) throw std::invalid_argument("shaft_accel: " + a + " needs shafts=1");
+      return;
+    }
+    if (!(shaftDensity_ > 0.0f)) throw std::invalid_argument("shaft_density: must be above 0 with shafts=1");
+    if (shaftAccel_ == ShadowAccel::None) return;
+    if (hpsm_.accel != ShadowAccel::None) {
+      if (hpsm_.accel != shaftAccel_)
+        throw std::invalid_argument("shaft_accel: " + a + " differs from accel=" + p.getChoice("accel") + "; one secondary map serves both, use the same or none");
+      return;
+    }
+    maps_.accel = shaftAccel_;
+    maps_.reach = 0;
+    int block = p.getInt("hpsm_block");
+    maps_.block = block == 0 ? 8 : block;
+    if (shaftAccel_ == ShadowAccel::MinMax && (maps_.block & (maps_.block - 1)) != 0)
+      throw std::invalid_argument("hpsm_block: " + std::to_string(maps_.block) + " is not a power of two, as shaft_accel=minmax needs");
+    if (uint32_t(maps_.block) > resolution_)
+      throw std::invalid_argument("hpsm_block: " + std::to_string(maps_.block) + " is wider than the shadow map (" + std::to_string(resolution_) + " texels)");
+  }
+
   struct OrthoFit {
     glm::mat4 viewProj;
     float nearZ, farZ;  // world units along the light direction, from the view's origin
@@ -136,13 +187,18 @@ class BasicTechnique final : public Technique, public HpsmCounterSource {
     glm::vec2 mapSize;
     glm::vec2 pad;
     PcssConstants pcss;
+    glm::vec4 shafts;  // density, steps
   };
-  static_assert(sizeof(Constants) == 112);
+  static_assert(sizeof(Constants) == 128);
 
   uint32_t resolution_ = 0;
   int filter_ = 0, kernel_ = 3;
   PcssSettings pcss_;
-  HpsmSettings hpsm_;
+  HpsmSettings hpsm_, maps_;
+  bool shafts_ = false;
+  int shaftSteps_ = 64;
+  float shaftDensity_ = 0.02f;
+  ShadowAccel shaftAccel_ = ShadowAccel::None;
   Device* device_ = nullptr;
   std::unique_ptr<HpsmMaps> hpsmMaps_;
   DepthMap map_;
