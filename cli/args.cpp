@@ -2,6 +2,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <iterator>
 #include <stdexcept>
 
 #define STB_IMAGE_WRITE_IMPLEMENTATION
@@ -36,8 +37,13 @@ Args::Args(std::vector<std::string> args, const std::vector<std::string>& flags)
 bool Args::has(const std::string& name) const { return options_.count(name) > 0; }
 
 std::string Args::get(const std::string& name, const std::string& fallback) const {
-  auto it = options_.find(name);
-  return it == options_.end() ? fallback : it->second;
+  auto [b, e] = options_.equal_range(name);
+  if (b == e) return fallback;
+  // Only the options read with getAll (--param, --budget) repeat; for the others a second value
+  // would be silently ignored.
+  if (std::next(b) != e)
+    throw std::invalid_argument("--" + name + " is given twice ('" + b->second + "' and '" + std::next(b)->second + "'): give it once");
+  return b->second;
 }
 
 std::vector<std::string> Args::getAll(const std::string& name) const {

@@ -32,8 +32,10 @@ class ViewFitTechnique final : public tech::Technique {
     rd.SlopeScaledDepthBias = 2.0f;
     rd.DepthClipEnable = false;
     rasterizer_ = device.CreateRasterizerState(rd);
+    // basic's lit shader reads the map as a one-slice Texture2DArray.
+    array_ = tech::MakeSliceArraySrv(device, map_.texture.get());
     sampler_ = tech::MakeShadowComparisonSampler(device);
-    constants_ = tech::MakeConstantBuffer(device, 80, "view-fitted shadow constants");
+    constants_ = tech::MakeConstantBuffer(device, sizeof(Constants), "view-fitted shadow constants");
   }
   void RenderShadows(DeviceContext& ctx, tech::SceneDrawer& drawer, const tech::FrameInputs& f) override {
     tech::GpuTimer::Scope timed(f.timer, ctx, "shadow");
@@ -43,10 +45,7 @@ class ViewFitTechnique final : public tech::Technique {
     glm::mat4 view = glm::lookAtRH(center - dir * radius, center, glm::vec3(0, 1, 0));
     scene::Bounds ls = f.scene->bounds.transformed(view);
     glm::mat4 viewProj = glm::orthoRH_ZO(-radius, radius, -radius, radius, -ls.max.z, -ls.min.z) * view;
-    struct {
-      glm::mat4 m;
-      glm::vec2 size, pad;
-    } c{viewProj, glm::vec2(float(size_)), glm::vec2(0.0f)};
+    Constants c{viewProj, glm::vec2(float(size_)), glm::vec2(0.0f), {}};
     ctx.UpdateSubresource(constants_.get(), 0, nullptr, &c, 0, 0);
     ShaderResourceView* none = nullptr;
     ctx.PSSetShaderResources(0, 1, &none);
@@ -61,15 +60,25 @@ class ViewFitTechnique final : public tech::Technique {
   std::string LightingInclude() const override { return "basic/shadow.hlsli"; }
   void BindLighting(DeviceContext& ctx) override {
     ctx.PSSetConstantBuffers(2, {constants_.get()});
-    ctx.PSSetShaderResources(0, {map_.srv.get()});
+    ctx.PSSetShaderResources(0, {array_.get()});
     ctx.PSSetSamplers(0, {sampler_.get()});
   }
   tech::ShadowStats Stats() const override { return {uint64_t(size_) * size_ * 4, triangles_}; }
   std::vector<tech::ShadowLayer> Layers() const override { return {{size_, size_}}; }
 
  private:
+  // basic's cbuffer BasicShadow: the matrix and map size this technique sets, then basic's filter
+  // and shaft settings, left zero (its defines select neither). Room to spare, so basic can grow.
+  struct Constants {
+    glm::mat4 m;
+    glm::vec2 size, pad;
+    float rest[44];
+  };
+  static_assert(sizeof(Constants) == 256);
+
   uint32_t size_ = 0;
   tech::DepthMap map_;
+  Ref<ShaderResourceView> array_;
   Ref<RasterizerState> rasterizer_;
   Ref<SamplerState> sampler_;
   Ref<Buffer> constants_;
