@@ -494,17 +494,25 @@ TEST_P(HpsmTest, BadParametersAreRefusedNamingTheParameter) {
   expectError({{"accel", "hpsm"}, {"hpsm_eps", "x"}}, "hpsm_eps");
   EXPECT_NO_THROW(configure({{"accel", "minmax"}, {"filter", "box"}, {"kernel", "5"}, {"hpsm_block", "8"}}));
   // csm: the same parameters, and no accel for moment filters.
-  auto csm = [&](std::map<std::string, std::string> p, const std::string& param) {
-    std::unique_ptr<tech::Technique> t = tech::CreateTechnique("csm");
+  auto csm = [&](std::map<std::string, std::string> p, const std::string& param, const std::string& technique = "csm") {
+    std::unique_ptr<tech::Technique> t = tech::CreateTechnique(technique);
     try {
-      t->Configure(device(), tech::ParamValues::Parse("csm", t->Params(), p));
-      ADD_FAILURE() << "csm accepted " << param;
+      t->Configure(device(), tech::ParamValues::Parse(technique, t->Params(), p));
+      ADD_FAILURE() << technique << " accepted " << param;
     } catch (const std::invalid_argument& e) {
       EXPECT_NE(std::string(e.what()).find(param), std::string::npos) << e.what();
     }
   };
   csm({{"accel", "hpsm"}, {"filter", "vsm"}}, "accel");
   csm({{"accel", "minmax"}, {"hpsm_block", "3"}}, "hpsm_block");
+  // pcss: the footprint is 2 (pcss_max_kernel / 2 + 1) + 2 texels (18 for the default 15).
+  csm({{"accel", "minmax"}, {"filter", "pcss"}, {"hpsm_block", "16"}}, "hpsm_block");
+  expectError({{"accel", "minmax"}, {"filter", "pcss"}, {"pcss_max_kernel", "7"}, {"hpsm_block", "8"}}, "hpsm_block");
+  EXPECT_NO_THROW(configure({{"accel", "minmax"}, {"filter", "pcss"}, {"pcss_max_kernel", "7"}, {"hpsm_block", "16"}}));
+  // sdsm: csm's parameters, through its shared settings.
+  csm({{"accel", "minmax"}, {"hpsm_block", "3"}}, "hpsm_block", "sdsm");
+  csm({{"accel", "hpsm"}, {"hpsm_eps", "-1"}}, "hpsm_eps", "sdsm");
+  csm({{"accel", "fast"}}, "accel", "sdsm");
 }
 
 SP_INSTANTIATE_BACKEND_TESTS(HpsmTest);

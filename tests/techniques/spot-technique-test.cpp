@@ -105,7 +105,9 @@ TEST_P(SpotTechniqueValidationTest, BadLightChoicesAreErrors) {
   }
   for (auto [param, value] : {std::pair{"hpsm_block", "2048"}, std::pair{"accel", "fast"}, std::pair{"hpsm_eps", "-1"}}) {
     try {
-      MakeRenderer(room.scene, 16, 16, {{"accel", "hpsm"}, {"resolution", "1024"}, {param, value}});
+      std::map<std::string, std::string> p = {{"accel", "hpsm"}, {"resolution", "1024"}};
+      p[param] = value;
+      MakeRenderer(room.scene, 16, 16, p);
       ADD_FAILURE() << "expected an error for " << param << "=" << value;
     } catch (const std::invalid_argument& e) {
       EXPECT_NE(std::string(e.what()).find(param), std::string::npos) << e.what();
