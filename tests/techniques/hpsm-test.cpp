@@ -61,6 +61,10 @@ struct Query {
 };
 static_assert(sizeof(Query) == 32);
 
+// PCSS (SHADOW_FILTER 5) over the same map: orthographic, depth range [0, 10] world units and
+// 200 texels of penumbra per world unit, so the search radius is M/2 for every receiver (its
+// penumbra from the near plane is wider) and the box's width runs from 1 (receivers 0.0005 behind)
+// to M; PCSS_TAPS search taps per axis.
 const char* const kHarness = R"(
 #include "common/hpsm.hlsli"
 struct Query { float2 uv; float depth; float pad0; float2 depthGradient; float2 pixel; };
@@ -73,29 +77,15 @@ RWStructuredBuffer<float4> output : register(u0);
   Query q = queries[id.x];
   ShadowFilterInput i = {q.uv, 0.0, q.depth, float2(1.0 / 64.0, 1.0 / 64.0), float4(0, 0, 1, 1), q.depthGradient, q.pixel};
   uint how;
-  float accelerated = HpsmShadowFilter(shadowMap, shadowCmp, hpsm, i, how);
-  output[id.x] = float4(ShadowFilter(shadowMap, shadowCmp, i), accelerated, float(how), 0);
-}
-)";
-
-// PCSS over the same map, orthographic, depth range [0, 10] world units and 200 texels of
-// penumbra per world unit: the search radius is M/2 for every receiver (its penumbra from the near
-// plane is wider), and the box's width runs from 1 (receivers 0.0005 behind) to M.
-const char* const kPcssHarness = R"(
-#include "common/hpsm.hlsli"
-struct Query { float2 uv; float depth; float pad0; float2 depthGradient; float2 pixel; };
-Texture2DArray<float> shadowMap : register(t0);
-StructuredBuffer<Query> queries : register(t1);
-Texture2DArray<float4> hpsm : register(t2);
-SamplerComparisonState shadowCmp : register(s0);
-RWStructuredBuffer<float4> output : register(u0);
-[numthreads(64, 1, 1)] void main(uint3 id : SV_DispatchThreadID) {
-  Query q = queries[id.x];
-  ShadowFilterInput i = {q.uv, 0.0, q.depth, float2(1.0 / 64.0, 1.0 / 64.0), float4(0, 0, 1, 1), q.depthGradient, q.pixel};
+#if SHADOW_FILTER == 5
   ShadowPcssInput p = {float2(0.0, 10.0), float2(200.0, 200.0), 0.0, PCSS_TAPS, HPSM_PCSS_MAX_KERNEL, 0.0};
-  uint how;
   float accelerated = HpsmShadowFilterPcss(shadowMap, shadowCmp, hpsm, i, p, how);
-  output[id.x] = float4(ShadowFilterPcss(shadowMap, shadowCmp, i, p), accelerated, float(how), 0);
+  float plain = ShadowFilterPcss(shadowMap, shadowCmp, i, p);
+#else
+  float accelerated = HpsmShadowFilter(shadowMap, shadowCmp, hpsm, i, how);
+  float plain = ShadowFilter(shadowMap, shadowCmp, i);
+#endif
+  output[id.x] = float4(plain, accelerated, float(how), 0);
 }
 )";
 
@@ -128,13 +118,12 @@ class HpsmTest : public BackendTest {
   std::vector<glm::vec4> Texels(tech::HpsmMaps& maps) { return ReadAs<glm::vec4>(ReadTexture(device(), ctx(), maps.texture())); }
 
   // (plain, accelerated, decision) per query.
-  std::vector<glm::vec4> Run(const tech::HpsmSettings& s, int filter, int kernel, std::vector<Query> qs, const char* harness = kHarness,
-                             std::vector<hlsl::Define> defines = {}) {
+  std::vector<glm::vec4> Run(const tech::HpsmSettings& s, int filter, int kernel, std::vector<Query> qs, std::vector<hlsl::Define> defines = {}) {
     std::unique_ptr<tech::HpsmMaps> maps = Build(s);
     defines.push_back({"SHADOW_FILTER", std::to_string(filter)});
     defines.push_back({"SHADOW_KERNEL", std::to_string(kernel)});
     for (const hlsl::Define& h : tech::HpsmDefines(s)) defines.push_back(h);
-    Ref<ComputeShader> shader = device().CreateComputeShader(CompileHlsl(harness, "cs_5_0", "main", defines));
+    Ref<ComputeShader> shader = device().CreateComputeShader(CompileHlsl(kHarness, "cs_5_0", "main", defines));
     const size_t count = qs.size();
     while (qs.size() % 64) qs.push_back(qs.front());
     Ref<Buffer> in = MakeBuffer(device(), BIND_SHADER_RESOURCE, qs.data(), uint32_t(qs.size() * sizeof(Query)), RESOURCE_MISC_BUFFER_STRUCTURED, sizeof(Query));
@@ -321,7 +310,7 @@ TEST_P(HpsmTest, AcceleratedPcssEqualsThePlainOneWhereTheMapsDecide) {
         ASSERT_EQ(s.reach, k.maxKernel / 2 + 1);
         std::string what = std::string(accel == tech::ShadowAccel::Hpsm ? "hpsm" : "minmax") + " pcss max kernel " + std::to_string(k.maxKernel) + " taps " +
                            std::to_string(k.taps) + (gradient ? " with gradient" : "");
-        ExpectAcceleratedEqualsPlain(what, Run(s, kPcss, 3, Queries(gradient), kPcssHarness, {{"PCSS_TAPS", std::to_string(k.taps)}}), 0.15);
+        ExpectAcceleratedEqualsPlain(what, Run(s, kPcss, 3, Queries(gradient), {{"PCSS_TAPS", std::to_string(k.taps)}}), 0.15);
       }
     }
   }
