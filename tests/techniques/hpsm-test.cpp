@@ -1,6 +1,8 @@
 // Accelerated filtering (common/hpsm.hlsli, techniques/hpsm-maps.h): the secondary maps against a
 // construction on the CPU, the accelerated filter against the plain one wherever the maps decide
-// (a compute shader over a known depth map, then basic's lit pass on a plane + box scene), the
+// (a compute shader over a known depth map, for the comparison filters and for PCSS, whose
+// footprint the maps bound by pcss_max_kernel; then basic's, csm's and sdsm's lit passes on a
+// plane + box scene; spot's is in spot-technique-test.cpp), the
 // chapter's claim that planes decide most of a flat receiver under a low sun where min/max does
 // not, and the parameters' errors.
 //

@@ -1,7 +1,8 @@
 // The spot technique: in the cube test room with its point light replaced by a spot light pointing
 // down, the spheres inside the cone cast exactly the shadows a CPU segment-sphere test gives
 // (both backends, validation on); both backends draw the same image; the lab judges it against
-// the spot light's reference; bad light choices are errors.
+// the spot light's reference; accel draws the same image as without it; bad light choices and
+// accel parameters are errors.
 #include "backend-test.h"
 #include "bench.h"
 #include "cross-backend.h"
