@@ -28,10 +28,12 @@ int FilterReach(int filter, int kernel) {
     case 0: return 0;
     case 1: case 2: case 3: return kernel / 2;
     case 4: return kernel / 2 + 1;
+    // pcss: search and box both stay within M/2 of s, M = pcss_max_kernel, so they read texels
+    // [floor(s) - ceil((M - 1)/2), floor(s) + ceil((M - 1)/2) + 1] (common/hpsm.hlsli); one more
+    // because the search's last tap, s - r + 2r, is s + r only up to float rounding.
+    case 5: return kernel / 2 + 1;
   }
-  // PCSS's footprint is chosen per pixel (blocker search, then a kernel up to pcss_max_kernel).
-  throw std::invalid_argument(filter == 5 ? "accel: filter=pcss is not accelerated yet (its footprint is chosen per pixel); use accel=none"
-                                          : "accel: no footprint known for SHADOW_FILTER " + std::to_string(filter));
+  throw std::invalid_argument("accel: no footprint known for SHADOW_FILTER " + std::to_string(filter));
 }
 
 std::vector<ParamSpec> HpsmParams() {
@@ -48,6 +50,7 @@ HpsmSettings ReadHpsmSettings(const ParamValues& p, int filter, int kernel, uint
   const std::string& a = p.getChoice("accel");
   s.accel = a == "hpsm" ? ShadowAccel::Hpsm : a == "minmax" ? ShadowAccel::MinMax : ShadowAccel::None;
   if (s.accel != ShadowAccel::None) s.reach = FilterReach(filter, kernel);
+  if (filter == 5) s.pcssMaxKernel = kernel;
   s.eps = p.getFloat("hpsm_eps");
   s.counters = p.getInt("hpsm_counters") != 0;
   int footprint = 2 * s.reach + 2;
@@ -69,7 +72,7 @@ HpsmSettings ReadHpsmSettings(const ParamValues& p, int filter, int kernel, uint
 std::vector<hlsl::Define> HpsmDefines(const HpsmSettings& s) {
   if (s.accel == ShadowAccel::None) return {};
   return {{"SHADOW_ACCEL", s.accel == ShadowAccel::Hpsm ? "1" : "2"}, {"HPSM_BLOCK", std::to_string(s.block)}, {"HPSM_REACH", std::to_string(s.reach)},
-          {"HPSM_COUNTERS", s.counters ? "1" : "0"}};
+          {"HPSM_COUNTERS", s.counters ? "1" : "0"}, {"HPSM_PCSS_MAX_KERNEL", std::to_string(s.pcssMaxKernel)}};
 }
 
 HpsmMaps::HpsmMaps(Device& device, const HpsmSettings& s, uint32_t width, uint32_t height, uint32_t layers)

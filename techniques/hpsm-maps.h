@@ -10,8 +10,9 @@ namespace sp::tech {
 
 enum class ShadowAccel { None, Hpsm, MinMax };
 
-// Texels a filter (SHADOW_FILTER 0..4, SHADOW_KERNEL) reads beyond floor(s) on each side, R in
-// common/hpsm.hlsli: it reads [floor(s) - R, floor(s) + R + 1]. Throws for a filter it does not know.
+// Texels a filter (SHADOW_FILTER 0..5, SHADOW_KERNEL; for pcss the kernel is pcss_max_kernel)
+// reads beyond floor(s) on each side, R in common/hpsm.hlsli: it reads [floor(s) - R,
+// floor(s) + R + 1]. Throws for a filter it does not know.
 int FilterReach(int filter, int kernel);
 
 struct HpsmSettings {
@@ -20,11 +21,12 @@ struct HpsmSettings {
   int block = 4;     // texels per secondary texel and axis (minmax: the level's width, 2^k)
   float eps = 0.0f;  // hpsm: the largest plane residual, in depth units
   bool counters = true;  // the lit pass counts its decisions (HpsmCounterSource)
+  int pcssMaxKernel = 0;  // filter=pcss: the pcss_max_kernel the reach was derived from (HPSM_PCSS_MAX_KERNEL)
 };
 
 // The parameters: accel, hpsm_block, hpsm_eps, hpsm_counters.
 std::vector<ParamSpec> HpsmParams();
-// Reads them for a technique filtering with (filter, kernel) a map of `resolution` texels;
+// Reads them for a technique filtering with (filter, kernel; pcss: pcss_max_kernel) a map of `resolution` texels;
 // throws std::invalid_argument naming the parameter for values that cannot work.
 HpsmSettings ReadHpsmSettings(const ParamValues& p, int filter, int kernel, uint32_t resolution);
 // SHADOW_ACCEL, HPSM_BLOCK, HPSM_REACH, HPSM_COUNTERS for the lighting include (none for accel=none).

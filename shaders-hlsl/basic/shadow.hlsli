@@ -42,15 +42,19 @@ float ShadowVisibility(float3 worldPos, float3 worldNormal, float4 svPosition) {
   if (BasicOutsideMap(c)) return 1.0;
   // The rasterizer's depth bias is the only bias: no receiver-plane gradient.
   ShadowFilterInput i = {c.xy, 0.0, c.z, 1.0 / shadowMapSize, float4(0, 0, 1, 1), float2(0, 0), svPosition.xy};
-#if SHADOW_FILTER == 5
-  return ShadowFilterPcss(ShadowMap, ShadowSampler, i, basicPcss);
-#elif defined(SHADOW_ACCEL) && SHADOW_ACCEL != 0
+#if defined(SHADOW_ACCEL) && SHADOW_ACCEL != 0
   uint how;
+#if SHADOW_FILTER == 5
+  float v = HpsmShadowFilterPcss(ShadowMap, ShadowSampler, HpsmMap, i, basicPcss, how);
+#else
   float v = HpsmShadowFilter(ShadowMap, ShadowSampler, HpsmMap, i, how);
+#endif
 #if HPSM_COUNTERS
   HpsmCounters.InterlockedAdd(how * 4, 1);
 #endif
   return v;
+#elif SHADOW_FILTER == 5
+  return ShadowFilterPcss(ShadowMap, ShadowSampler, i, basicPcss);
 #elif SHADOW_FILTER == 0
   return ShadowMap.SampleCmpLevelZero(ShadowSampler, float3(c.xy, 0), c.z);
 #else

@@ -10,6 +10,7 @@
 //   HPSM_BLOCK    shadow-map texels per secondary texel and axis (minmax: 2^level)
 //   HPSM_REACH    R, the footprint reach the maps were built for (below)
 //   HPSM_COUNTERS 1: the technique counts decisions (its own UAV; hpsm-maps.h's BindCounters)
+//   HPSM_PCSS_MAX_KERNEL  SHADOW_FILTER 5: pcss_max_kernel M, which bounds PCSS's footprint
 //
 // Footprint: a lookup centred at s (texel space, ShadowFilterSetup) reads only texels
 // [floor(s) - R, floor(s) + R + 1] per axis, clamped into the filter's [lo, hi]: R = 0 for hw2x2,
@@ -18,6 +19,12 @@
 // tap whose coordinate the sampler rounded across a texel centre, with a weight of that rounding's
 // size (zero where coordinates are exact, as with power-of-two maps, or snapped to 8 subtexel
 // bits, as on D3D11 hardware).
+// PCSS (common/shadow-pcss.hlsli): the search's radius r is at most M/2 and its loads read texel
+// floor(p + 1/2) for p in [s - r, s + r]; the box of width w <= M (clamped) gives weight only to
+// texels whose cell meets (s - w/2, s + w/2). Both are texels t with |t - s| < M/2 + 1/2, i.e.
+// [floor(s) - ceil((M-1)/2), floor(s) + ceil((M-1)/2) + 1]; R = floor(M/2) + 1 is one more, for
+// the search's last tap s - r + 2r, which float rounding may carry past s + r (one texel in about
+// 10^4 at s ~ 2000). Gathers of the box's last 2x2 block may read one texel further with weight 0.
 //
 // Exactness: with LESS_EQUAL (reference <= depth is lit) every tap is 1 when each reference any
 // tap uses is <= every depth it reads, 0 when each is > every depth it reads; the filters' tap
@@ -32,6 +39,12 @@
 //     reference differs from reference(t) by at most |G|1, and depth(t) from plane(t) by the stored
 //     residual. kHpsmRounding of the magnitudes involved covers the float evaluation of the plane
 //     and the references here and in the build.
+// PCSS: lit when every texel of the footprint is >= every reference: no search load finds a
+// blocker (stored < reference), and shadow-pcss.hlsli returns exactly 1 without running its box.
+// Shadowed when every texel is < every reference: every search load is a blocker, so the average
+// blocker depth is only known to lie in the blockers' range, but the box's width is clamped to
+// <= M whatever it is, so every texel with a non-zero weight lies in the footprint and compares
+// 0: the sum is exactly 0 (weight-zero texels outside add 0 * 0 or 0 * 1).
 #ifndef SP_HPSM_HLSLI
 #define SP_HPSM_HLSLI
 
@@ -74,6 +87,12 @@ float2 HpsmPlaneOrigin(int2 sx, int2 sy) { return float2(sx.x + sx.y, sy.x + sy.
 #define HPSM_FILTER_REACH SHADOW_KERNEL_HALF
 #elif SHADOW_FILTER == 4
 #define HPSM_FILTER_REACH (SHADOW_KERNEL_HALF + 1)
+#elif SHADOW_FILTER == 5
+#if !defined(HPSM_PCSS_MAX_KERNEL) || HPSM_PCSS_MAX_KERNEL < 1
+#error SHADOW_ACCEL with pcss needs HPSM_PCSS_MAX_KERNEL, the widest box the maps were built for
+#endif
+#define HPSM_FILTER_REACH (HPSM_PCSS_MAX_KERNEL / 2 + 1)
+#include "common/shadow-pcss.hlsli"
 #else
 #error hpsm.hlsli does not know the footprint of this SHADOW_FILTER
 #endif
@@ -146,12 +165,22 @@ uint HpsmDecide(Texture2DArray<float4> hpsm, ShadowFilterInput i) {
 #endif
 }
 
+#if SHADOW_FILTER != 5
 // ShadowFilter, skipped where the secondary map decides; `how` is the decision.
 float HpsmShadowFilter(Texture2DArray<float> map, SamplerComparisonState cmp, Texture2DArray<float4> hpsm, ShadowFilterInput i, out uint how) {
   how = HpsmDecide(hpsm, i);
   if (how == kHpsmFiltered) return ShadowFilter(map, cmp, i);
   return (how == kHpsmLitMinMax || how == kHpsmLitPlane) ? 1.0 : 0.0;
 }
+#else
+// ShadowFilterPcss, skipped where the maps decide; p.maxKernel must be HPSM_PCSS_MAX_KERNEL or less.
+float HpsmShadowFilterPcss(Texture2DArray<float> map, SamplerComparisonState cmp, Texture2DArray<float4> hpsm, ShadowFilterInput i, ShadowPcssInput p,
+                           out uint how) {
+  how = HpsmDecide(hpsm, i);
+  if (how == kHpsmFiltered) return ShadowFilterPcss(map, cmp, i, p);
+  return (how == kHpsmLitMinMax || how == kHpsmLitPlane) ? 1.0 : 0.0;
+}
+#endif
 
 #endif
 #endif  // SP_HPSM_HLSLI

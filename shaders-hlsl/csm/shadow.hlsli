@@ -189,14 +189,20 @@ float CsmFiltered(int c, float3 lv, float3 lvDdx, float3 lvDdy, float3 worldNorm
   pi.searchTaps = csmPcss.y;
   pi.maxKernel = csmPcss.z;
   pi.padPcss = 0.0;
-  return ShadowFilterPcss(CsmMap, CsmSampler, fi, pi);
-#elif defined(SHADOW_ACCEL) && SHADOW_ACCEL != 0
+#endif
+#if defined(SHADOW_ACCEL) && SHADOW_ACCEL != 0
   uint how;
+#if SHADOW_FILTER == 5
+  float v = HpsmShadowFilterPcss(CsmMap, CsmSampler, CsmHpsm, fi, pi, how);
+#else
   float v = HpsmShadowFilter(CsmMap, CsmSampler, CsmHpsm, fi, how);
+#endif
 #if HPSM_COUNTERS
   CsmHpsmCounters.InterlockedAdd(how * 4, 1);
 #endif
   return v;
+#elif SHADOW_FILTER == 5
+  return ShadowFilterPcss(CsmMap, CsmSampler, fi, pi);
 #else
   return ShadowFilter(CsmMap, CsmSampler, fi);
 #endif

@@ -49,7 +49,7 @@ class BasicTechnique final : public Technique, public HpsmCounterSource, public 
     map_ = MakeDepthMap(device, resolution_, resolution_, "basic shadow map");
     // The PCF library reads Texture2DArray; a one-slice array view of the same map.
     arraySrv_ = MakeSliceArraySrv(device, map_.texture.get());
-    hpsm_ = ReadHpsmSettings(p, filter_, kernel_, resolution_);
+    hpsm_ = ReadHpsmSettings(p, filter_, filter_ == kPcssFilter ? pcss_.maxKernel : kernel_, resolution_);
     ReadShaftSettings(p);
     hpsmMaps_.reset();
     if (maps_.accel != ShadowAccel::None) {

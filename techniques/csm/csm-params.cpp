@@ -119,7 +119,7 @@ CsmSettings SettingsFrom(const ParamValues& p, const std::string& technique) {
     if (s.moments && p.getChoice("accel") != "none")
       throw std::invalid_argument(prefix + "accel=" + p.getChoice("accel") + " needs a comparison filter (filter is " + filter + ")");
     try {
-      if (!s.moments) s.hpsm = ReadHpsmSettings(p, s.filter, s.filter == 0 ? 3 : s.kernel, f.resolution);
+      if (!s.moments) s.hpsm = ReadHpsmSettings(p, s.filter, s.filter == 0 ? 3 : s.filter == kPcssFilter ? s.pcss.maxKernel : s.kernel, f.resolution);
     } catch (const std::invalid_argument& e) {
       throw std::invalid_argument(prefix + e.what());
     }

@@ -10,9 +10,11 @@ namespace {
 
 // csm parameters sdsm shares. Not: split, lambda, splits (the analysis places the splits), fit,
 // focus, stabilize (the partitions are fitted to the samples; quantize is sdsm's stability
-// option), select (interval: the splits are where the samples are), storage (array).
-const char* const kSharedCsmParams[] = {"cascades", "resolution", "blend", "filter", "kernel", "bias", "depth_bias",
-                                        "slope_bias", "normal_offset", "msaa", "blur", "bleed", "exponents", "precision", "anisotropy"};
+// option), select (interval: the splits are where the samples are), storage (array). accel: the
+// secondary maps are built per partition from the slices as csm builds them per cascade.
+const char* const kSharedCsmParams[] = {"cascades",  "resolution", "blend",      "filter",  "kernel",   "bias",       "depth_bias",
+                                        "slope_bias", "normal_offset", "msaa",    "blur",    "bleed",    "exponents",  "precision",
+                                        "anisotropy", "accel",       "hpsm_block", "hpsm_eps", "hpsm_counters"};
 
 }  // namespace
 

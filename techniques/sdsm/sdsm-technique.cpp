@@ -60,6 +60,8 @@ void SdsmTechnique::Configure(Device& device, const ParamValues& params) {
   } else {
     srv_ = MakeSliceArraySrv(device, map_.get());
   }
+  hpsm_.reset();
+  if (cs.hpsm.accel != ShadowAccel::None) hpsm_ = std::make_unique<HpsmMaps>(device, cs.hpsm, n_, n_, k_);
 
   // Shadow passes as csm's: bias for the comparison filters only, and depth clamping so casters
   // above a partition's box (tight boxes hold receivers only) are pancaked onto its near plane.
@@ -181,8 +183,8 @@ void SdsmTechnique::RenderShadows(DeviceContext& ctx, SceneDrawer& drawer, const
   const scene::Camera& cam = frame.camera;
   glm::mat4 lightView = MakeLightView(cam.position, cam.forward(), cam.up, frame.light.direction);
   // The maps are read by the previous frame's lit pass; unbind them before writing.
-  ShaderResourceView* none = nullptr;
-  ctx.PSSetShaderResources(0, 1, &none);
+  ShaderResourceView* none[2] = {};
+  ctx.PSSetShaderResources(0, 2, none);
 
   if (analysis_) {
     DepthPrepass(ctx, drawer, frame);
@@ -232,6 +234,11 @@ void SdsmTechnique::RenderShadows(DeviceContext& ctx, SceneDrawer& drawer, const
     DrawCpu(ctx, drawer, frame, unionCull);
   }
   ConvertMoments(ctx, frame);
+  if (hpsm_) {
+    ctx.OMSetRenderTargets(0, nullptr, nullptr);
+    GpuTimer::Scope built(frame.timer, ctx, "hpsm");
+    hpsm_->Build(ctx, srv_.get());
+  }
   ++frame_;
 }
 
@@ -334,9 +341,12 @@ void SdsmTechnique::ConvertMoments(DeviceContext& ctx, const FrameInputs& frame)
 
 void SdsmTechnique::BindLighting(DeviceContext& ctx) {
   ctx.PSSetConstantBuffers(2, {constants_.get()});
-  ctx.PSSetShaderResources(0, {moments_ ? moments_->Srv() : srv_.get()});
+  ctx.PSSetShaderResources(0, {moments_ ? moments_->Srv() : srv_.get(), hpsm_ ? hpsm_->srv() : nullptr});
   ctx.PSSetSamplers(0, {moments_ ? moments_->Sampler() : sampler_.get()});
+  if (hpsm_) hpsm_->BindCounters(ctx);
 }
+
+HpsmCounts SdsmTechnique::HpsmDecisions() const { return hpsm_ ? hpsm_->ReadCounters(*device_->GetImmediateContext()) : HpsmCounts{}; }
 
 std::vector<uint32_t> SdsmTechnique::ReadBufferWords(DeviceContext& ctx, Buffer* buffer) const {
   BUFFER_DESC d;
@@ -359,6 +369,7 @@ ShadowStats SdsmTechnique::Stats() const {
   const TEXTURE2D_DESC& td = map_->GetDesc();
   s.memoryBytes = uint64_t(td.Width) * td.Height * td.ArraySize * td.SampleDesc.Count * 4;
   if (moments_) s.memoryBytes += moments_->MemoryBytes();
+  if (hpsm_) s.memoryBytes += hpsm_->memoryBytes();
   s.memoryBytes += constants_->GetDesc().ByteWidth;
   if (cameraDepth_.texture) s.memoryBytes += uint64_t(depthWidth_) * depthHeight_ * 4;
   if (analysis_) {

@@ -65,7 +65,7 @@ struct SdsmDebugFrame {
   std::vector<PartitionFit> fits;
 };
 
-class SdsmTechnique final : public Technique {
+class SdsmTechnique final : public Technique, public HpsmCounterSource {
  public:
   std::string Name() const override { return "sdsm"; }
   std::vector<ParamSpec> Params() const override { return SdsmParams(); }
@@ -77,6 +77,7 @@ class SdsmTechnique final : public Technique {
   // cull=gpu: the triangle count is read back from the indirect arguments here (once per frame),
   // never during the frame.
   ShadowStats Stats() const override;
+  HpsmCounts HpsmDecisions() const override;
   std::vector<ShadowLayer> Layers() const override;
 
   // For tests and debug views.
@@ -129,6 +130,7 @@ class SdsmTechnique final : public Technique {
   Ref<SamplerState> sampler_;
   Ref<Buffer> constants_;
   std::unique_ptr<MomentMaps> moments_;
+  std::unique_ptr<HpsmMaps> hpsm_;  // accel: built from every slice after the partitions
   std::vector<float> blurRadii_;
 
   // Camera depth and the analysis.

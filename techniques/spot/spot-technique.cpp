@@ -2,13 +2,16 @@
 // light's cone (field of view twice the outer cone angle, near to range), rendered depth-only with
 // D3D11 rasterizer depth bias and read with SampleCmpLevelZero (2x2 hardware PCF), as basic does
 // for the directional light, or with the PCF library's filters, PCSS included (the light as a disc
-// of radius `light_size`). Casters outside the frustum are culled. The directional light and the
-// other local lights are unshadowed.
+// of radius `light_size`); optionally a secondary map decides whole footprints before the filter
+// runs (accel; techniques/hpsm-maps.h: post-projective depth of a plane is affine in texel space,
+// so planes fit a perspective map as they fit an orthographic one). Casters outside the frustum are
+// culled. The directional light and the other local lights are unshadowed.
 #include <glm/ext/matrix_clip_space.hpp>
 #include <glm/ext/matrix_transform.hpp>
 #include <stdexcept>
 
 #include "cube/cube-culling.h"
+#include "hpsm-maps.h"
 #include "pcf-params.h"
 #include <sp/tech/technique.h>
 
@@ -18,7 +21,7 @@ namespace {
 // One perspective map cannot hold a cone much wider than this; the cube technique can.
 constexpr float kMaxOuterDegrees = 80.0f;
 
-class SpotTechnique final : public Technique {
+class SpotTechnique final : public Technique, public HpsmCounterSource {
  public:
   std::string Name() const override { return "spot"; }
 
@@ -35,6 +38,7 @@ class SpotTechnique final : public Technique {
         PcfKernelParam("box, gauss, gathercmp"),
     };
     for (const ParamSpec& p : PcssParamSpecs(PcssLight::Local)) specs.push_back(p);
+    for (ParamSpec& h : HpsmParams()) specs.push_back(h);
     return specs;
   }
 
@@ -48,6 +52,10 @@ class SpotTechnique final : public Technique {
     pcss_ = PcssSettingsFrom(p);
     map_ = MakeDepthMap(device, resolution_, resolution_, "spot shadow map");
     arraySrv_ = MakeSliceArraySrv(device, map_.texture.get());
+    hpsm_ = ReadHpsmSettings(p, filter_, filter_ == kPcssFilter ? pcss_.maxKernel : kernel_, resolution_);
+    hpsmMaps_.reset();
+    device_ = &device;
+    if (hpsm_.accel != ShadowAccel::None) hpsmMaps_ = std::make_unique<HpsmMaps>(device, hpsm_, resolution_, resolution_, 1);
     RASTERIZER_DESC rd;
     rd.FrontCounterClockwise = true;  // glTF winding, as in the lit pass
     rd.DepthBias = p.getInt("depth_bias");
@@ -82,8 +90,8 @@ class SpotTechnique final : public Technique {
                 PerspectivePcssConstants(pcss_, near_, l.range, 2.0f * outer, float(resolution_))};
     ctx.UpdateSubresource(constants_.get(), 0, nullptr, &c, 0, 0);
 
-    ShaderResourceView* none = nullptr;
-    ctx.PSSetShaderResources(0, 1, &none);
+    ShaderResourceView* none[2] = {};
+    ctx.PSSetShaderResources(0, 2, none);
     ctx.OMSetRenderTargets(0, nullptr, map_.dsv.get());
     ctx.ClearDepthStencilView(map_.dsv.get(), CLEAR_DEPTH, 1.0f, 0);
     VIEWPORT vp{0, 0, float(resolution_), float(resolution_), 0, 1};
@@ -92,21 +100,32 @@ class SpotTechnique final : public Technique {
     ctx.OMSetDepthStencilState(nullptr, 0);
     const std::vector<scene::Instance>& instances = s.instances;
     trianglesSubmitted_ = drawer.DrawDepth(ctx, viewProj_, [&](uint32_t i) { return cube::BoxMayMeetFrustum(viewProj_, instances[i].worldBounds); });
+    if (hpsmMaps_) {
+      ctx.OMSetRenderTargets(0, nullptr, nullptr);
+      GpuTimer::Scope built(frame.timer, ctx, "hpsm");
+      hpsmMaps_->Build(ctx, arraySrv_.get());
+    }
   }
 
   std::string LightingInclude() const override { return "spot/shadow.hlsli"; }
   std::vector<hlsl::Define> LightingDefines() const override {
     bool sized = filter_ != 0 && filter_ != kPcssFilter;
-    return {{"SHADOW_FILTER", std::to_string(filter_)}, {"SHADOW_KERNEL", std::to_string(sized ? kernel_ : 3)}};
+    std::vector<hlsl::Define> d = {{"SHADOW_FILTER", std::to_string(filter_)}, {"SHADOW_KERNEL", std::to_string(sized ? kernel_ : 3)}};
+    for (hlsl::Define& h : HpsmDefines(hpsm_)) d.push_back(h);
+    return d;
   }
 
   void BindLighting(DeviceContext& ctx) override {
     ctx.PSSetConstantBuffers(2, {constants_.get()});
-    ctx.PSSetShaderResources(0, {arraySrv_.get()});
+    ctx.PSSetShaderResources(0, {arraySrv_.get(), hpsmMaps_ ? hpsmMaps_->srv() : nullptr});
     ctx.PSSetSamplers(0, {sampler_.get()});
+    if (hpsmMaps_) hpsmMaps_->BindCounters(ctx);
   }
 
-  ShadowStats Stats() const override { return {uint64_t(resolution_) * resolution_ * 4, trianglesSubmitted_}; }
+  ShadowStats Stats() const override {
+    return {uint64_t(resolution_) * resolution_ * 4 + (hpsmMaps_ ? hpsmMaps_->memoryBytes() : 0), trianglesSubmitted_};
+  }
+  HpsmCounts HpsmDecisions() const override { return hpsmMaps_ ? hpsmMaps_->ReadCounters(*device_->GetImmediateContext()) : HpsmCounts{}; }
   std::vector<ShadowLayer> Layers() const override { return {{resolution_, resolution_}}; }
   int LabLocalLight(const scene::Scene& scene) const override { return int(scene.pointLights.size() + light_); }
 
@@ -125,6 +144,9 @@ class SpotTechnique final : public Technique {
   float near_ = 0.05f;
   int filter_ = 0, kernel_ = 3;
   PcssSettings pcss_;
+  HpsmSettings hpsm_;
+  Device* device_ = nullptr;
+  std::unique_ptr<HpsmMaps> hpsmMaps_;
   DepthMap map_;
   Ref<ShaderResourceView> arraySrv_;
   Ref<RasterizerState> rasterizer_;

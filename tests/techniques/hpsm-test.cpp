@@ -1,6 +1,8 @@
 // Accelerated filtering (common/hpsm.hlsli, techniques/hpsm-maps.h): the secondary maps against a
 // construction on the CPU, the accelerated filter against the plain one wherever the maps decide
-// (a compute shader over a known depth map, then basic's lit pass on a plane + box scene), the
+// (a compute shader over a known depth map, for the comparison filters and for PCSS, whose
+// footprint the maps bound by pcss_max_kernel; then basic's, csm's and sdsm's lit passes on a
+// plane + box scene; spot's is in spot-technique-test.cpp), the
 // chapter's claim that planes decide most of a flat receiver under a low sun where min/max does
 // not, and the parameters' errors.
 //
@@ -22,7 +24,7 @@ namespace {
 
 constexpr uint32_t kSize = 64;
 constexpr double kExact = 4.0 / (1 << 23);  // a few ulps of 1
-enum Filter { kHw2x2, kBox, kGauss, kGatherCmp, kPoisson };
+enum Filter { kHw2x2, kBox, kGauss, kGatherCmp, kPoisson, kPcss };
 
 // The map: a tilted plane (depth 0.4 + 0.003 x + 0.0015 y at texel (x, y)), a box top in front of
 // it (texels [20, 36) x [24, 40) at 0.2) and a patch of noise (texels [44, 60) x [4, 20)).
@@ -61,6 +63,10 @@ struct Query {
 };
 static_assert(sizeof(Query) == 32);
 
+// PCSS (SHADOW_FILTER 5) over the same map: orthographic, depth range [0, 10] world units and
+// 200 texels of penumbra per world unit, so the search radius is M/2 for every receiver (its
+// penumbra from the near plane is wider) and the box's width runs from 1 (receivers 0.0005 behind)
+// to M; PCSS_TAPS search taps per axis.
 const char* const kHarness = R"(
 #include "common/hpsm.hlsli"
 struct Query { float2 uv; float depth; float pad0; float2 depthGradient; float2 pixel; };
@@ -73,8 +79,15 @@ RWStructuredBuffer<float4> output : register(u0);
   Query q = queries[id.x];
   ShadowFilterInput i = {q.uv, 0.0, q.depth, float2(1.0 / 64.0, 1.0 / 64.0), float4(0, 0, 1, 1), q.depthGradient, q.pixel};
   uint how;
+#if SHADOW_FILTER == 5
+  ShadowPcssInput p = {float2(0.0, 10.0), float2(200.0, 200.0), 0.0, PCSS_TAPS, HPSM_PCSS_MAX_KERNEL, 0.0};
+  float accelerated = HpsmShadowFilterPcss(shadowMap, shadowCmp, hpsm, i, p, how);
+  float plain = ShadowFilterPcss(shadowMap, shadowCmp, i, p);
+#else
   float accelerated = HpsmShadowFilter(shadowMap, shadowCmp, hpsm, i, how);
-  output[id.x] = float4(ShadowFilter(shadowMap, shadowCmp, i), accelerated, float(how), 0);
+  float plain = ShadowFilter(shadowMap, shadowCmp, i);
+#endif
+  output[id.x] = float4(plain, accelerated, float(how), 0);
 }
 )";
 
@@ -107,9 +120,10 @@ class HpsmTest : public BackendTest {
   std::vector<glm::vec4> Texels(tech::HpsmMaps& maps) { return ReadAs<glm::vec4>(ReadTexture(device(), ctx(), maps.texture())); }
 
   // (plain, accelerated, decision) per query.
-  std::vector<glm::vec4> Run(const tech::HpsmSettings& s, int filter, int kernel, std::vector<Query> qs) {
+  std::vector<glm::vec4> Run(const tech::HpsmSettings& s, int filter, int kernel, std::vector<Query> qs, std::vector<hlsl::Define> defines = {}) {
     std::unique_ptr<tech::HpsmMaps> maps = Build(s);
-    std::vector<hlsl::Define> defines = {{"SHADOW_FILTER", std::to_string(filter)}, {"SHADOW_KERNEL", std::to_string(kernel)}};
+    defines.push_back({"SHADOW_FILTER", std::to_string(filter)});
+    defines.push_back({"SHADOW_KERNEL", std::to_string(kernel)});
     for (const hlsl::Define& h : tech::HpsmDefines(s)) defines.push_back(h);
     Ref<ComputeShader> shader = device().CreateComputeShader(CompileHlsl(kHarness, "cs_5_0", "main", defines));
     const size_t count = qs.size();
@@ -286,6 +300,24 @@ TEST_P(HpsmTest, AcceleratedFilterEqualsThePlainOneWhereTheMapsDecide) {
   }
 }
 
+// PCSS (filter 5): maps built for pcss_max_kernel M decide exactly where PCSS returns 1 or 0.
+TEST_P(HpsmTest, AcceleratedPcssEqualsThePlainOneWhereTheMapsDecide) {
+  struct Case {
+    int maxKernel, taps;
+  };
+  for (Case k : {Case{15, 6}, Case{7, 3}, Case{4, 16}}) {
+    for (tech::ShadowAccel accel : {tech::ShadowAccel::Hpsm, tech::ShadowAccel::MinMax}) {
+      for (bool gradient : {false, true}) {
+        tech::HpsmSettings s = Settings(accel, kPcss, k.maxKernel);
+        ASSERT_EQ(s.reach, k.maxKernel / 2 + 1);
+        std::string what = std::string(accel == tech::ShadowAccel::Hpsm ? "hpsm" : "minmax") + " pcss max kernel " + std::to_string(k.maxKernel) + " taps " +
+                           std::to_string(k.taps) + (gradient ? " with gradient" : "");
+        ExpectAcceleratedEqualsPlain(what, Run(s, kPcss, 3, Queries(gradient), {{"PCSS_TAPS", std::to_string(k.taps)}}), 0.15);
+      }
+    }
+  }
+}
+
 // --- basic's lit pass
 
 std::unique_ptr<tech::Renderer> MakeBasic(Device& device, const scene::Scene& s, uint32_t w, uint32_t h, std::map<std::string, std::string> params) {
@@ -306,8 +338,9 @@ tech::HpsmCounts Decisions(tech::Renderer& r) {
 TEST_P(HpsmTest, BasicLitPassIsTheSameWithAndWithoutAcceleration) {
   const uint32_t W = 128, H = 128;
   scene::Scene s = FloatingBox(true);
-  for (const char* filter : {"box", "gathercmp"}) {
-    std::map<std::string, std::string> p = {{"resolution", "256"}, {"filter", filter}, {"kernel", "5"}, {"slope_bias", "5"}};
+  // pcss with pcss_max_kernel 5 has the 5x5 box's reach plus one texel (hpsm.hlsli).
+  for (const char* filter : {"box", "gathercmp", "pcss"}) {
+    std::map<std::string, std::string> p = {{"resolution", "256"}, {"filter", filter}, {"kernel", "5"}, {"pcss_max_kernel", "5"}, {"slope_bias", "5"}};
     std::unique_ptr<tech::Renderer> plain = MakeBasic(device(), s, W, H, p);
     plain->RenderFrame(s.camera, s.light);
     std::vector<uint8_t> reference = plain->ReadColor();
@@ -354,32 +387,44 @@ TEST_P(HpsmTest, BasicLitPassIsTheSameWithAndWithoutAcceleration) {
 // csm: several layers (array slices, or atlas regions of one slice clamped by uvClamp), two
 // lookups per pixel where cascades blend, and receiver-plane bias (references that vary over the
 // footprint). Accelerated and plain draw the same image.
-TEST_P(HpsmTest, CsmLitPassIsTheSameWithAndWithoutAcceleration) {
+// csm's cascades and sdsm's partitions (csm's lighting code, its constants written on the GPU by
+// cull=gpu or from the CPU by cull=readback): each layer gets its own secondary map.
+TEST_P(HpsmTest, CsmAndSdsmLitPassesAreTheSameWithAndWithoutAcceleration) {
   const uint32_t W = 128, H = 128;
   scene::Scene s = FloatingBox(true);
-  for (const char* storage : {"array", "atlas"}) {
-    for (const char* bias : {"slope", "receiver-plane"}) {
-      std::map<std::string, std::string> p = {{"cascades", "3"}, {"resolution", "256"}, {"storage", storage}, {"bias", bias}, {"blend", "0.2"},
-                                              {"filter", "gathercmp"}, {"kernel", "5"}, {"slope_bias", "5"}};
-      auto make = [&](const std::map<std::string, std::string>& params) {
-        std::unique_ptr<tech::Technique> t = tech::CreateTechnique("csm");
-        t->Configure(device(), tech::ParamValues::Parse("csm", t->Params(), params));
-        return std::make_unique<tech::Renderer>(device(), s, std::move(t), W, H);
-      };
-      std::unique_ptr<tech::Renderer> plain = make(p);
-      plain->RenderFrame(s.camera, s.light);
-      std::vector<uint8_t> reference = plain->ReadColor();
-      p["accel"] = "hpsm";
-      std::unique_ptr<tech::Renderer> r = make(p);
-      r->RenderFrame(s.camera, s.light);
-      std::vector<uint8_t> img = r->ReadColor();
-      tech::HpsmCounts st = Decisions(*r);
-      std::printf("[ hpsm ] csm %s, bias %s, gathercmp 5: min/max %.3f, plane %.3f, filtered %.3f of %llu lookups\n", storage, bias, st.minMaxFraction(),
-                  st.planeFraction(), st.filteredFraction(), (unsigned long long)st.total());
-      EXPECT_GT(st.total(), W * H / 2);
-      EXPECT_LT(st.filteredFraction(), 0.5) << storage << " " << bias;
-      EXPECT_EQ(CompareImages(std::string("csm-") + storage + "-" + bias, W, H, reference.data(), img.data(), 0), 0u) << storage << " " << bias;
-    }
+  struct Case {
+    const char* technique;
+    std::map<std::string, std::string> params;
+  };
+  std::vector<Case> cases;
+  for (const char* storage : {"array", "atlas"})
+    for (const char* bias : {"slope", "receiver-plane"})
+      cases.push_back({"csm", {{"storage", storage}, {"bias", bias}, {"filter", "gathercmp"}, {"kernel", "5"}}});
+  cases.push_back({"csm", {{"filter", "pcss"}, {"pcss_max_kernel", "5"}}});
+  cases.push_back({"csm", {{"filter", "pcss"}, {"pcss_max_kernel", "5"}, {"bias", "receiver-plane"}}});
+  for (const char* cull : {"gpu", "readback"}) cases.push_back({"sdsm", {{"cull", cull}, {"filter", "gathercmp"}, {"kernel", "5"}}});
+  for (Case& c : cases) {
+    std::map<std::string, std::string> p = {{"cascades", "3"}, {"resolution", "256"}, {"blend", "0.2"}, {"slope_bias", "5"}};
+    std::string what = c.technique;
+    for (auto& [k, v] : c.params) p[k] = v, what += "-" + k + "-" + v;
+    auto make = [&](const std::map<std::string, std::string>& params) {
+      std::unique_ptr<tech::Technique> t = tech::CreateTechnique(c.technique);
+      t->Configure(device(), tech::ParamValues::Parse(c.technique, t->Params(), params));
+      return std::make_unique<tech::Renderer>(device(), s, std::move(t), W, H);
+    };
+    std::unique_ptr<tech::Renderer> plain = make(p);
+    plain->RenderFrame(s.camera, s.light);
+    std::vector<uint8_t> reference = plain->ReadColor();
+    p["accel"] = "hpsm";
+    std::unique_ptr<tech::Renderer> r = make(p);
+    r->RenderFrame(s.camera, s.light);
+    std::vector<uint8_t> img = r->ReadColor();
+    tech::HpsmCounts st = Decisions(*r);
+    std::printf("[ hpsm ] %s: min/max %.3f, plane %.3f, filtered %.3f of %llu lookups\n", what.c_str(), st.minMaxFraction(), st.planeFraction(),
+                st.filteredFraction(), (unsigned long long)st.total());
+    EXPECT_GT(st.total(), W * H / 2) << what;
+    EXPECT_LT(st.filteredFraction(), 0.5) << what;
+    EXPECT_EQ(CompareImages(what, W, H, reference.data(), img.data(), 0), 0u) << what;
   }
 }
 
@@ -440,17 +485,25 @@ TEST_P(HpsmTest, BadParametersAreRefusedNamingTheParameter) {
   expectError({{"accel", "hpsm"}, {"hpsm_eps", "x"}}, "hpsm_eps");
   EXPECT_NO_THROW(configure({{"accel", "minmax"}, {"filter", "box"}, {"kernel", "5"}, {"hpsm_block", "8"}}));
   // csm: the same parameters, and no accel for moment filters.
-  auto csm = [&](std::map<std::string, std::string> p, const std::string& param) {
-    std::unique_ptr<tech::Technique> t = tech::CreateTechnique("csm");
+  auto csm = [&](std::map<std::string, std::string> p, const std::string& param, const std::string& technique = "csm") {
+    std::unique_ptr<tech::Technique> t = tech::CreateTechnique(technique);
     try {
-      t->Configure(device(), tech::ParamValues::Parse("csm", t->Params(), p));
-      ADD_FAILURE() << "csm accepted " << param;
+      t->Configure(device(), tech::ParamValues::Parse(technique, t->Params(), p));
+      ADD_FAILURE() << technique << " accepted " << param;
     } catch (const std::invalid_argument& e) {
       EXPECT_NE(std::string(e.what()).find(param), std::string::npos) << e.what();
     }
   };
   csm({{"accel", "hpsm"}, {"filter", "vsm"}}, "accel");
   csm({{"accel", "minmax"}, {"hpsm_block", "3"}}, "hpsm_block");
+  // pcss: the footprint is 2 (pcss_max_kernel / 2 + 1) + 2 texels (18 for the default 15).
+  csm({{"accel", "minmax"}, {"filter", "pcss"}, {"hpsm_block", "16"}}, "hpsm_block");
+  expectError({{"accel", "minmax"}, {"filter", "pcss"}, {"pcss_max_kernel", "7"}, {"hpsm_block", "8"}}, "hpsm_block");
+  EXPECT_NO_THROW(configure({{"accel", "minmax"}, {"filter", "pcss"}, {"pcss_max_kernel", "7"}, {"hpsm_block", "16"}}));
+  // sdsm: csm's parameters, through its shared settings.
+  csm({{"accel", "minmax"}, {"hpsm_block", "3"}}, "hpsm_block", "sdsm");
+  csm({{"accel", "hpsm"}, {"hpsm_eps", "-1"}}, "hpsm_eps", "sdsm");
+  csm({{"accel", "fast"}}, "accel", "sdsm");
 }
 
 SP_INSTANTIATE_BACKEND_TESTS(HpsmTest);

@@ -1,11 +1,13 @@
 // The spot technique: in the cube test room with its point light replaced by a spot light pointing
 // down, the spheres inside the cone cast exactly the shadows a CPU segment-sphere test gives
 // (both backends, validation on); both backends draw the same image; the lab judges it against
-// the spot light's reference; bad light choices are errors.
+// the spot light's reference; accel draws the same image as without it; bad light choices and
+// accel parameters are errors.
 #include "backend-test.h"
 #include "bench.h"
 #include "cross-backend.h"
 #include "cube-room.h"
+#include <sp/tech/hpsm-counters.h>
 #include <sp/tech/renderer.h>
 
 namespace sp::test {
@@ -52,6 +54,36 @@ TEST_P(SpotTechniqueTest, SpheresInTheConeCastTheirExactShadows) {
   EXPECT_GT(total.edgeShadowPerFace[0] + total.edgeShadowPerFace[3], 40);
 }
 
+// accel (common/hpsm.hlsli) on a perspective map: the same image as without it, for a fixed kernel
+// and for pcss, with most of the spot-lit floor decided by planes (post-projective depth of the
+// floor is affine in texel space, so it is one plane however the light looks at it).
+TEST_P(SpotTechniqueTest, AcceleratedFilteringDrawsTheSameImage) {
+  const uint32_t W = 160, H = 120;
+  CubeRoom room = SpotRoom();
+  scene::Camera cam = RoomCameras(room)[0];
+  for (const char* filter : {"gathercmp", "pcss"}) {
+    std::map<std::string, std::string> p = {{"resolution", "512"}, {"filter", filter}, {"kernel", "5"}, {"pcss_max_kernel", "5"}, {"light_size", "0.1"}, {"slope_bias", "6"}};
+    std::unique_ptr<tech::Renderer> plain = MakeRenderer(room.scene, W, H, p);
+    plain->RenderFrame(cam, room.scene.light);
+    std::vector<uint8_t> reference = plain->ReadColor();
+    for (const char* accel : {"hpsm", "minmax"}) {
+      p["accel"] = accel;
+      std::unique_ptr<tech::Renderer> r = MakeRenderer(room.scene, W, H, p);
+      r->RenderFrame(cam, room.scene.light);
+      std::vector<uint8_t> img = r->ReadColor();
+      tech::HpsmCounts st = dynamic_cast<const tech::HpsmCounterSource&>(r->technique()).HpsmDecisions();
+      std::printf("[ spot ] %s, accel=%s: min/max %.3f, plane %.3f, filtered %.3f of %llu lookups\n", filter, accel, st.minMaxFraction(), st.planeFraction(),
+                  st.filteredFraction(), (unsigned long long)st.total());
+      EXPECT_GT(st.total(), W * H / 8) << filter << " " << accel;
+      EXPECT_GT(st.filteredFraction(), 0.0) << "the spheres' shadow edges need the filter";
+      if (std::string(accel) == "hpsm") {
+        EXPECT_GT(st.planeFraction(), 0.5) << filter << ": the floor is one plane in the perspective map";
+      }
+      EXPECT_EQ(CompareImages(std::string("spot-accel-") + filter + "-" + accel, W, H, reference.data(), img.data(), 0), 0u) << filter << " " << accel;
+    }
+  }
+}
+
 SP_INSTANTIATE_BACKEND_TESTS(SpotTechniqueTest);
 
 // Bad input refused by name, no pixels checked: these run on the null backend too.
@@ -71,6 +103,16 @@ TEST_P(SpotTechniqueValidationTest, BadLightChoicesAreErrors) {
     ADD_FAILURE() << "expected an error for a cone one perspective map cannot hold";
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("cube"), std::string::npos) << e.what();
+  }
+  for (auto [param, value] : {std::pair{"hpsm_block", "2048"}, std::pair{"accel", "fast"}, std::pair{"hpsm_eps", "-1"}}) {
+    try {
+      std::map<std::string, std::string> p = {{"accel", "hpsm"}, {"resolution", "1024"}};
+      p[param] = value;
+      MakeRenderer(room.scene, 16, 16, p);
+      ADD_FAILURE() << "expected an error for " << param << "=" << value;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(param), std::string::npos) << e.what();
+    }
   }
 }
 
