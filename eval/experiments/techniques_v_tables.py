@@ -22,7 +22,11 @@ def runs(out, name):
 
 def refused(out, name):
     p = Path(out) / f"{name}.refused"
-    return p.read_text().strip().replace("\n", " ").replace("|", "/") if p.exists() else None
+    if not p.exists():
+        return None
+    # The error line only (a refusal may follow a warning).
+    lines = [ln for ln in p.read_text().splitlines() if "error:" in ln] or p.read_text().splitlines()
+    return " ".join(lines).split("error: ", 1)[-1].replace("|", "/")
 
 
 def row(cells):
@@ -119,7 +123,8 @@ def accuracy_table(out):
                 maxd = max(maxd, int(d.max()))
                 m0, m1 = r0["metrics"], r1["metrics"]
                 same = same and all(m0[k] == m1[k] for k in ("misclassified_pct", "mean_abs_error", "false_lit_pct", "false_shadow_pct"))
-            row(list(key[:3]) + [backend] + cells + [maxd, "yes" if same else "NO"])
+            if cells != ["refused", "refused"]:
+                row(list(key[:3]) + [backend] + cells + [maxd, "yes" if same else "NO"])
 
 
 def lowsun_table(out):
@@ -140,7 +145,7 @@ def lowsun_table(out):
 
 
 def sweep_table(out, name, param, title):
-    rs = runs(out, name)
+    rs = runs(out, name) + runs(out, name + "-minmax")
     if not rs:
         return
     print(f"\n**{title}** (default scene, basic box 7, counters on; GPU ms median over frames)\n")
