@@ -33,7 +33,7 @@ try_bench() {
   local name="$1"; shift
   rm -f "$OUT/$name.refused"
   if ! bench "$name" "$@" 2> "$OUT/$name.err"; then
-    grep -v '^bench: ' "$OUT/$name.err" | tail -n 3 > "$OUT/$name.refused"
+    { grep 'error:' "$OUT/$name.err" || grep -v '^bench: ' "$OUT/$name.err"; } | tail -n 3 > "$OUT/$name.refused"
     echo "techniques-v: $name refused: $(cat "$OUT/$name.refused")" >&2
     rm -f "$OUT/$name.json"
   fi
