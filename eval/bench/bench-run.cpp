@@ -78,7 +78,14 @@ RunResult RunOne(const RunSpec& spec, eval::ReferenceCache& reference, const Pro
   Ref<Device> device = CreateDevice(dd);
   DeviceContext& ctx = *device->GetImmediateContext();
   r.device = device->Info().deviceName;
-  technique->Configure(*device, params);
+  try {
+    technique->Configure(*device, params);
+  } catch (...) {
+    // A refusal can come after the technique made some of its objects: they belong to the device
+    // and go first (otherwise the device reports them as outliving it).
+    technique.reset();
+    throw;
+  }
   tech::RendererOptions ro;
   ro.lab = true;
   tech::Renderer renderer(*device, scene, std::move(technique), spec.width, spec.height, ro);
