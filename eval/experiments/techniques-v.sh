@@ -12,8 +12,8 @@
 #   eval/experiments/techniques-v.sh [OUT_DIR] [WxH] [FRAMES]
 # PARTS="1 3" runs only those parts (default: all); SCENES, TECHS, KERNELS (filter=... suffixes) and
 # SUNS (pcss light_size values) override part 1's lists, e.g. for a quick run.
-# A combination a technique refuses (e.g. pcss with accel while that is not implemented) is
-# recorded as OUT_DIR/<experiment>.refused and shown as such in the tables.
+# A combination a technique refuses (an hpsm_block the min/max baseline cannot take, a kernel too
+# wide for its filter) is recorded as OUT_DIR/<experiment>.refused and shown as such in the tables.
 # Writes OUT_DIR/<experiment>.json and prints the tables (techniques_v_tables.py).
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
