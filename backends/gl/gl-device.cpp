@@ -1,17 +1,23 @@
 // The OpenGL 4.5 device: a headless EGL (surfaceless) context, debug output, the fixed state
 // that makes GL behave like D3D11, device information and format support.
 #include <cstring>
+#include <map>
 #include <mutex>
+#include <string_view>
 
 #include "gl-context.h"
 
 namespace sp::gl {
 namespace {
 
-// eglTerminate is not reference counted: the display stays initialised while any device lives.
+// eglTerminate is not reference counted: a display stays initialised while any device uses it.
+// Keyed by the native display (null: the surfaceless one).
+struct DisplayEntry {
+  EGLDisplay display = EGL_NO_DISPLAY;
+  int users = 0;
+};
 std::mutex gDisplayMutex;
-int gDisplayUsers = 0;
-EGLDisplay gDisplay = EGL_NO_DISPLAY;
+std::map<void*, DisplayEntry> gDisplays;
 
 std::string EglErrorText() {
   char buf[32];
@@ -21,29 +27,54 @@ std::string EglErrorText() {
 
 [[noreturn]] void CreationFailed(const std::string& why) { throw Error(ErrorId::DEVICE_CREATION_FAILED, "CreateDevice", "OpenGL", why); }
 
-EGLDisplay AcquireDisplay() {
-  std::lock_guard lock(gDisplayMutex);
-  if (gDisplayUsers == 0) {
-    const char* exts = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
-    if (!exts || !std::strstr(exts, "EGL_MESA_platform_surfaceless"))
-      CreationFailed("EGL has no EGL_MESA_platform_surfaceless (install libegl-mesa0); headless rendering needs it");
-    auto getPlatformDisplay = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
-    if (!getPlatformDisplay) CreationFailed("eglGetPlatformDisplayEXT is not available");
-    EGLDisplay d = getPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
-    if (d == EGL_NO_DISPLAY) CreationFailed("eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA) failed: " + EglErrorText());
-    EGLint major = 0, minor = 0;
-    if (!eglInitialize(d, &major, &minor)) CreationFailed("eglInitialize failed: " + EglErrorText());
-    gDisplay = d;
+bool HasEglExtension(EGLDisplay d, const char* name) {
+  const char* exts = eglQueryString(d, EGL_EXTENSIONS);
+  if (!exts) return false;
+  std::string_view all(exts), n(name);
+  for (size_t pos = all.find(n); pos != std::string_view::npos; pos = all.find(n, pos + 1)) {
+    size_t end = pos + n.size();
+    if ((pos == 0 || all[pos - 1] == ' ') && (end == all.size() || all[end] == ' ')) return true;
   }
-  ++gDisplayUsers;
-  return gDisplay;
+  return false;
 }
 
-void ReleaseDisplay() {
+// x11Display null: the headless surfaceless display. Otherwise an X11 platform display of that
+// Display*, on which window surfaces can be made; the context still runs surfaceless between
+// presentations, so it needs EGL_KHR_surfaceless_context and EGL_KHR_no_config_context there too.
+EGLDisplay AcquireDisplay(void* x11Display) {
   std::lock_guard lock(gDisplayMutex);
-  if (--gDisplayUsers == 0) {
-    eglTerminate(gDisplay);
-    gDisplay = EGL_NO_DISPLAY;
+  DisplayEntry& e = gDisplays[x11Display];
+  if (e.users == 0) {
+    const char* platform = x11Display ? "EGL_KHR_platform_x11" : "EGL_MESA_platform_surfaceless";
+    if (!HasEglExtension(EGL_NO_DISPLAY, platform) && !(x11Display && HasEglExtension(EGL_NO_DISPLAY, "EGL_EXT_platform_x11")))
+      CreationFailed(std::string("EGL has no ") + platform + " (install libegl-mesa0); " +
+                     (x11Display ? "presenting to an X11 window needs it" : "headless rendering needs it"));
+    auto getPlatformDisplay = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
+    if (!getPlatformDisplay) CreationFailed("eglGetPlatformDisplayEXT is not available");
+    EGLDisplay d = x11Display ? getPlatformDisplay(EGL_PLATFORM_X11_KHR, x11Display, nullptr)
+                              : getPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+    if (d == EGL_NO_DISPLAY) CreationFailed(std::string("eglGetPlatformDisplayEXT(") + (x11Display ? "EGL_PLATFORM_X11_KHR" : "EGL_PLATFORM_SURFACELESS_MESA") + ") failed: " + EglErrorText());
+    EGLint major = 0, minor = 0;
+    if (!eglInitialize(d, &major, &minor)) CreationFailed("eglInitialize failed: " + EglErrorText());
+    if (x11Display) {
+      for (const char* ext : {"EGL_KHR_surfaceless_context", "EGL_KHR_no_config_context"})
+        if (!HasEglExtension(d, ext)) {
+          eglTerminate(d);
+          CreationFailed(std::string("the X11 EGL display lacks ") + ext);
+        }
+    }
+    e.display = d;
+  }
+  ++e.users;
+  return e.display;
+}
+
+void ReleaseDisplay(void* x11Display) {
+  std::lock_guard lock(gDisplayMutex);
+  DisplayEntry& e = gDisplays[x11Display];
+  if (--e.users == 0) {
+    eglTerminate(e.display);
+    gDisplays.erase(x11Display);
   }
 }
 
@@ -82,7 +113,8 @@ void ThrowError(ErrorId id, const std::string& call, const std::string& object, 
 }
 
 GLDevice::GLDevice(Device& core, const DeviceDesc& desc) : DeviceBackend(core) {
-  display_ = AcquireDisplay();
+  x11Display_ = desc.x11Display;
+  display_ = AcquireDisplay(x11Display_);
   try {
     if (!eglBindAPI(EGL_OPENGL_API)) CreationFailed("eglBindAPI(EGL_OPENGL_API) failed: " + EglErrorText());
     const EGLint attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5, EGL_CONTEXT_OPENGL_PROFILE_MASK,
@@ -92,7 +124,7 @@ GLDevice::GLDevice(Device& core, const DeviceDesc& desc) : DeviceBackend(core) {
     if (!eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, egl_)) CreationFailed("eglMakeCurrent failed: " + EglErrorText());
   } catch (...) {
     if (egl_ != EGL_NO_CONTEXT) eglDestroyContext(display_, egl_);
-    ReleaseDisplay();
+    ReleaseDisplay(x11Display_);
     throw;
   }
 
@@ -102,7 +134,7 @@ GLDevice::GLDevice(Device& core, const DeviceDesc& desc) : DeviceBackend(core) {
     // The destructor does not run for a half-built device: release what exists here.
     eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
     eglDestroyContext(display_, egl_);
-    ReleaseDisplay();
+    ReleaseDisplay(x11Display_);
     throw;
   }
 }
@@ -167,7 +199,7 @@ GLDevice::~GLDevice() {
   if (info_.validationEnabled) glDebugMessageCallback(nullptr, nullptr);
   eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
   eglDestroyContext(display_, egl_);
-  ReleaseDisplay();
+  ReleaseDisplay(x11Display_);
 }
 
 void GLDevice::MakeCurrent() const {

@@ -179,6 +179,9 @@ class GLDevice final : public detail::DeviceBackend {
   ~GLDevice() override;
 
   void MakeCurrent() const;
+  EGLDisplay eglDisplay() const { return display_; }
+  EGLContext eglContext() const { return egl_; }
+  void* x11Display() const { return x11Display_; }
   GLContext* context() const { return context_; }
   void DetachContext() { context_ = nullptr; }
 
@@ -203,6 +206,7 @@ class GLDevice final : public detail::DeviceBackend {
   std::unique_ptr<detail::BackendObject> CreateShaderBackend(Shader& shader) override;
   std::unique_ptr<detail::BackendObject> CreateQueryBackend(Query& query) override;
   std::unique_ptr<detail::ContextBackend> CreateContextBackend() override;
+  std::unique_ptr<detail::SwapChainBackend> CreateSwapChainBackend(const SwapChainDesc& desc, unsigned long visualId) override;
   uint32_t FormatSupportBackend(FORMAT format) const override;
   uint32_t MaxSampleCountBackend(FORMAT format) const override;
   bool SampleCountSupportedBackend(FORMAT format, uint32_t count) const override;
@@ -212,6 +216,7 @@ class GLDevice final : public detail::DeviceBackend {
   void InitFormatSupport();
   std::vector<GLint> SampleCounts(GLenum internal) const;
 
+  void* x11Display_ = nullptr;  // DeviceDesc::x11Display
   EGLDisplay display_ = EGL_NO_DISPLAY;
   EGLContext egl_ = EGL_NO_CONTEXT;
   GLContext* context_ = nullptr;

@@ -73,7 +73,7 @@ std::string Lower(std::string s) {
 
 VulkanDevice::VulkanDevice(Device& core, const DeviceDesc& desc) : DeviceBackend(core) {
   try {
-    CreateInstance(desc.debug);
+    CreateInstance(desc.debug, desc.x11Display != nullptr);
     PickPhysicalDevice();
     CreateLogicalDevice(!desc.disableVsRenderTargetArrayIndex);
     if (desc.disableDepthBiasClamp) info_.depthBiasClamp = false;
@@ -123,7 +123,7 @@ void VulkanDevice::Teardown() {
   instance = VK_NULL_HANDLE;
 }
 
-void VulkanDevice::CreateInstance(bool debug) {
+void VulkanDevice::CreateInstance(bool debug, bool present) {
   const char* call = "CreateDevice";
   uint32_t loaderVersion = VK_API_VERSION_1_0;
   vkEnumerateInstanceVersion(&loaderVersion);
@@ -155,6 +155,15 @@ void VulkanDevice::CreateInstance(bool debug) {
     feat.debugUtils = HasExtension(le, VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
   }
   if (validation && feat.debugUtils) enabledExts.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+  if (present) {
+    // Named as strings: their headers need Xlib's, which only the swap-chain code includes.
+    for (const char* name : {"VK_KHR_surface", "VK_KHR_xlib_surface"}) {
+      if (!HasExtension(exts, name))
+        Throw(ErrorId::DEVICE_CREATION_FAILED, call, "vulkan", std::string("DeviceDesc::x11Display is set but the Vulkan loader lacks ") + name);
+      enabledExts.push_back(name);
+    }
+    feat.present = true;
+  }
   info_.validationEnabled = validation && feat.debugUtils;
 
   VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
@@ -393,6 +402,11 @@ void VulkanDevice::CreateLogicalDevice(bool allowLayerOutput) {
     enabled.push_back(VK_EXT_VERTEX_ATTRIBUTE_DIVISOR_EXTENSION_NAME);
     feat.divisor = true;
     feat.divisorZero = divisor.vertexAttributeInstanceRateZeroDivisor;
+  }
+  if (feat.present) {
+    if (!HasExtension(exts, VK_KHR_SWAPCHAIN_EXTENSION_NAME))
+      Throw(ErrorId::DEVICE_CREATION_FAILED, call, props.deviceName, "DeviceDesc::x11Display is set but the device lacks VK_KHR_swapchain");
+    enabled.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
   }
   if (layerOutput && HasExtension(exts, VK_EXT_SHADER_VIEWPORT_INDEX_LAYER_EXTENSION_NAME))
     enabled.push_back(VK_EXT_SHADER_VIEWPORT_INDEX_LAYER_EXTENSION_NAME);

@@ -339,6 +339,7 @@ struct Features {
   bool drawIndirectFirstInstance = false, debugUtils = false, drawParameters = false;
   // Mesa 22.3 lavapipe ignores the index buffer's binding offset in vkCmdDrawIndexedIndirect.
   bool indirectIgnoresIndexOffset = false;
+  bool present = false;  // VK_KHR_surface, VK_KHR_xlib_surface, VK_KHR_swapchain (DeviceDesc::x11Display)
 };
 
 // The device backend. The core (sp::Device) owns it, and destroys it only after the immediate
@@ -387,12 +388,13 @@ class VulkanDevice final : public detail::DeviceBackend {
   std::unique_ptr<detail::BackendObject> CreateShaderBackend(Shader& shader) override;
   std::unique_ptr<detail::BackendObject> CreateQueryBackend(Query& query) override;
   std::unique_ptr<detail::ContextBackend> CreateContextBackend() override;
+  std::unique_ptr<detail::SwapChainBackend> CreateSwapChainBackend(const SwapChainDesc& desc, unsigned long visualId) override;
   uint32_t FormatSupportBackend(FORMAT format) const override;
   uint32_t MaxSampleCountBackend(FORMAT format) const override;
   bool SampleCountSupportedBackend(FORMAT format, uint32_t count) const override;
 
  private:
-  void CreateInstance(bool debug);
+  void CreateInstance(bool debug, bool present);
   void PickPhysicalDevice();
   void CreateLogicalDevice(bool allowLayerOutput);
   void FillInfo();
@@ -495,6 +497,9 @@ class VulkanContext final : public detail::ContextBackend {
   void UseView(VkViewObj& v, const Access& a);
   void FlushBarriers();  // records pending barriers; ends rendering when some are needed
   void Submit();
+  // Submits the current batch waiting for `wait` (at the transfer stage) and signalling `signal`:
+  // a swap-chain image's acquisition and presentation. Returns the batch's serial.
+  uint64_t SubmitForPresent(VkSemaphore wait, VkSemaphore signal);
   void WaitForSerial(uint64_t serial);
   bool IsBusy(uint64_t serial);  // polls; true while the batch has not finished
   void Poll();
@@ -588,6 +593,7 @@ class VulkanContext final : public detail::ContextBackend {
   VkDeviceSize chunkUsed_ = 0;
   uint64_t work_ = 0;
   BarrierBatch barriers_;
+  VkSemaphore presentWait_ = VK_NULL_HANDLE, presentSignal_ = VK_NULL_HANDLE;  // for the next Submit only
 
   // Command-buffer state (reset with every new command buffer).
   bool rendering_ = false;

@@ -212,6 +212,20 @@ void VulkanContext::Submit() {
   VkSubmitInfo2 si{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
   si.commandBufferInfoCount = 1;
   si.pCommandBufferInfos = &cbi;
+  VkSemaphoreSubmitInfo waitInfo{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO}, signalInfo{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO};
+  if (presentWait_) {
+    waitInfo.semaphore = presentWait_;
+    waitInfo.stageMask = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;
+    si.waitSemaphoreInfoCount = 1;
+    si.pWaitSemaphoreInfos = &waitInfo;
+  }
+  if (presentSignal_) {
+    signalInfo.semaphore = presentSignal_;
+    signalInfo.stageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+    si.signalSemaphoreInfoCount = 1;
+    si.pSignalSemaphoreInfos = &signalInfo;
+  }
+  presentWait_ = presentSignal_ = VK_NULL_HANDLE;
   VkResult r = vkQueueSubmit2(dev_->queue, 1, &si, cur_->fence);
   std::unique_ptr<Batch> b = std::move(cur_);
   dev_->recordingSerial++;
@@ -224,6 +238,15 @@ void VulkanContext::Submit() {
   }
   inFlight_.push_back(std::move(b));
   Poll();
+}
+
+uint64_t VulkanContext::SubmitForPresent(VkSemaphore wait, VkSemaphore signal) {
+  if (!cur_) BeginBatch();
+  presentWait_ = wait;
+  presentSignal_ = signal;
+  uint64_t serial = dev_->recordingSerial;
+  Submit();
+  return serial;
 }
 
 void VulkanContext::SubmitIfBusy() {

@@ -11,6 +11,8 @@
 #include <string_view>
 
 #include <sp/rhi/context.h>
+#include <sp/rhi/swapchain.h>
+#include <vector>
 
 #include "clear-values.h"
 #include "pipeline-state.h"
@@ -105,6 +107,9 @@ class DeviceBackend {
   // Whether exactly `count` samples (a power of two) are supported: drivers may offer 4x but not
   // 2x (Mesa's software rasterizers), which a maximum alone cannot say.
   virtual bool SampleCountSupportedBackend(FORMAT format, uint32_t count) const { return count <= MaxSampleCountBackend(format); }
+  // visualId: the X visual of the window (GL picks the EGLConfig that matches it). The default
+  // refuses (the null backend cannot present).
+  virtual std::unique_ptr<SwapChainBackend> CreateSwapChainBackend(const SwapChainDesc& desc, unsigned long visualId);
 
   // The core device this backend serves, and what backends report through it.
   Device& Core() const { return core_; }
@@ -118,11 +123,26 @@ class DeviceBackend {
   DeviceInfo& info_;
 };
 
+// What a backend implements for a swap chain (sp::SwapChain owns it). The core has validated the
+// desc, checked that the window exists, and owns the back buffer; the backend shows it.
+class SwapChainBackend {
+ public:
+  virtual ~SwapChainBackend() = default;
+  // The DXGI formats whose back buffers this window's surface can show without conversion.
+  virtual std::vector<FORMAT> Formats() const = 0;
+  // After ResizeBuffers (or at creation): the buffer count and format of what comes next.
+  virtual void Configure(const SwapChainDesc& desc) = 0;
+  // Copies the back buffer to the window (stretched when sizes differ) and presents it.
+  virtual void Present(Texture2D& backBuffer, uint32_t syncInterval) = 0;
+};
+
 class NullResources;
 
 // The core's private parts of sp::Device.
 struct DeviceAccess {
   static bool StrictUnboundResources(const Device& d) { return d.strictUnboundResources_; }
+  static void* X11Display(const Device& d) { return d.x11Display_; }
+  static DeviceBackend& Backend(Device& d) { return *d.backend_; }
   static NullResources& Nulls(Device& d);  // made on first use
 };
 

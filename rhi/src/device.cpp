@@ -60,7 +60,7 @@ std::string UsageName(USAGE usage) {
 }
 
 Device::Device(const DeviceDesc& desc)
-    : strictUnboundResources_(desc.strictUnboundResources), shaderCacheDir_(desc.shaderCacheDir), callback_(desc.messageCallback) {
+    : strictUnboundResources_(desc.strictUnboundResources), x11Display_(desc.x11Display), shaderCacheDir_(desc.shaderCacheDir), callback_(desc.messageCallback) {
   info_.backend = desc.backend;
   info_.validationEnabled = desc.debug;
 }

@@ -27,6 +27,7 @@ void BackendTest::SetUp() {
   desc.messageCallback = [this](MessageSeverity s, std::string_view text) {
     if (s == MessageSeverity::Error) validationMessages.emplace_back(text);
   };
+  ConfigureDevice(desc);
   device_ = CreateDevice(desc);
 }
 

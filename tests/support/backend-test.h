@@ -27,6 +27,8 @@ class BackendTest : public ::testing::TestWithParam<Backend> {
   std::vector<std::string> validationMessages;
   // Set by tests that provoke driver messages on purpose.
   bool expectValidationErrors = false;
+  // Lets a suite change the device it gets (a display to present to, ...) before SetUp creates it.
+  virtual void ConfigureDevice(DeviceDesc&) {}
 
  private:
   Ref<Device> device_;

@@ -54,6 +54,11 @@ struct DeviceDesc {
   // Start the device as if the driver lacked depth-bias clamping (reported false), to exercise
   // CreateRasterizerState's refusal of a non-zero DepthBiasClamp.
   bool disableDepthBiasClamp = false;
+  // An Xlib Display* whose windows the device will present to (sp::CreateSwapChain). Null: the
+  // headless device (EGL surfaceless display; Vulkan without surface extensions). Set: GL runs on
+  // an EGL display of this X display (EGL_PLATFORM_X11_KHR), Vulkan enables VK_KHR_surface,
+  // VK_KHR_xlib_surface and VK_KHR_swapchain. Rendering is the same either way.
+  void* x11Display = nullptr;
 };
 
 // What the device is, and what it measured about the driver when it started.
@@ -214,6 +219,7 @@ class Device {
 
   DeviceInfo info_;
   bool strictUnboundResources_ = false;
+  void* x11Display_ = nullptr;  // DeviceDesc::x11Display: the display swap chains may present to
   std::filesystem::path shaderCacheDir_;
   std::unique_ptr<detail::DeviceBackend> backend_;
   std::unique_ptr<DeviceContext> context_;

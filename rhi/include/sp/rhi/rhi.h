@@ -9,5 +9,6 @@
 #include <sp/rhi/resource.h>
 #include <sp/rhi/shader.h>
 #include <sp/rhi/state.h>
+#include <sp/rhi/swapchain.h>
 #include <sp/rhi/view.h>
 #include <sp/hlsl/compiler.h>
