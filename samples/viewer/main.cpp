@@ -1,0 +1,332 @@
+// viewer: a window on a scene, rendered by a shadow technique through an sp::SwapChain.
+//
+//   viewer [--backend vulkan|gl] [--scene NAME|file.gltf] [--technique NAME] [--param k=v]...
+//          [--size WxH] [--sync 0|1] [--validate] [--frames N --screenshot out.png]
+//
+// Mouse: left drag looks around, right drag turns the sun. Keys: W A S D move, Q E down/up,
+// Shift faster; 1-9 pick a technique; Tab picks a parameter, [ and ] step it; F12 saves a
+// screenshot; Esc quits. With --frames N the viewer renders the scene's own camera and light N
+// times, saves what the window shows to --screenshot and exits: the same picture as
+// `shadowport render` with the same scene, technique, parameters and size.
+#include <sp/rhi/rhi.h>
+#include <sp/scene/scene.h>
+#include <sp/tech/renderer.h>
+#include <sp/tech/technique.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "fly-camera.h"
+
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <X11/Xlib.h>
+#include <X11/Xutil.h>
+// GLFW's X11 handles. glfw3native.h declares them, but with GLFW_EXPOSE_NATIVE_X11 it also
+// includes Xrandr's header (libxrandr-dev), which nothing here needs.
+extern "C" {
+Display* glfwGetX11Display(void);
+Window glfwGetX11Window(GLFWwindow* window);
+}
+#define STB_IMAGE_WRITE_IMPLEMENTATION
+#include <stb_image_write.h>
+
+namespace {
+
+struct Options {
+  sp::Backend backend = sp::Backend::Vulkan;
+  std::string scene = "default", technique = "basic";
+  std::map<std::string, std::string> params;
+  uint32_t width = 1280, height = 720;
+  uint32_t sync = 1;
+  bool validate = false;
+  int frames = 0;  // > 0: non-interactive
+  std::string screenshot;
+};
+
+[[noreturn]] void Usage(const std::string& why) {
+  throw std::invalid_argument(why + "\nusage: viewer [--backend vulkan|gl] [--scene NAME|file.gltf] [--technique NAME] [--param k=v]... "
+                                    "[--size WxH] [--sync 0|1] [--validate] [--frames N --screenshot out.png]");
+}
+
+Options ParseOptions(int argc, char** argv) {
+  Options o;
+  for (int i = 1; i < argc; ++i) {
+    std::string a = argv[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= argc) Usage(a + " needs a value");
+      return argv[++i];
+    };
+    if (a == "--backend") {
+      std::string b = value();
+      if (!sp::ParseBackend(b, &o.backend) || o.backend == sp::Backend::Null) Usage("--backend '" + b + "': vulkan or gl");
+    } else if (a == "--scene") {
+      o.scene = value();
+    } else if (a == "--technique") {
+      o.technique = value();
+    } else if (a == "--param") {
+      std::string p = value();
+      size_t eq = p.find('=');
+      if (eq == std::string::npos || eq == 0) Usage("--param '" + p + "' is not name=value");
+      o.params[p.substr(0, eq)] = p.substr(eq + 1);
+    } else if (a == "--size") {
+      std::string s = value();
+      if (std::sscanf(s.c_str(), "%ux%u", &o.width, &o.height) != 2 || !o.width || !o.height) Usage("--size '" + s + "': WxH");
+    } else if (a == "--sync") {
+      o.sync = uint32_t(std::stoul(value()));
+    } else if (a == "--validate") {
+      o.validate = true;
+    } else if (a == "--frames") {
+      o.frames = std::stoi(value());
+      if (o.frames <= 0) Usage("--frames must be at least 1");
+    } else if (a == "--screenshot") {
+      o.screenshot = value();
+    } else {
+      Usage("unknown option " + a);
+    }
+  }
+  if (o.frames > 0 && o.screenshot.empty()) Usage("--frames needs --screenshot out.png");
+  return o;
+}
+
+// What the window shows, read from the X server (RGBA8, top row first): the pixels on screen,
+// not the back buffer, so the test of the viewer covers Present too.
+std::vector<uint8_t> WindowPixels(Display* display, Window window, uint32_t w, uint32_t h) {
+  XSync(display, False);
+  XImage* img = XGetImage(display, window, 0, 0, w, h, AllPlanes, ZPixmap);
+  if (!img) throw std::runtime_error("XGetImage of the viewer's window failed");
+  auto channel = [](unsigned long pixel, unsigned long mask) {
+    int shift = 0;
+    while (mask && !(mask & 1)) mask >>= 1, ++shift;
+    return uint8_t(((pixel >> shift) & mask) * 255 / (mask ? mask : 1));
+  };
+  std::vector<uint8_t> out(size_t(w) * h * 4);
+  for (uint32_t y = 0; y < h; ++y)
+    for (uint32_t x = 0; x < w; ++x) {
+      unsigned long p = XGetPixel(img, int(x), int(y));
+      uint8_t* o = &out[(size_t(y) * w + x) * 4];
+      o[0] = channel(p, img->red_mask), o[1] = channel(p, img->green_mask), o[2] = channel(p, img->blue_mask), o[3] = 255;
+    }
+  XDestroyImage(img);
+  return out;
+}
+
+void WritePng(const std::string& path, uint32_t w, uint32_t h, const std::vector<uint8_t>& rgba) {
+  std::filesystem::path p(path);
+  if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path());
+  if (!stbi_write_png(path.c_str(), int(w), int(h), 4, rgba.data(), int(w * 4))) throw std::runtime_error("cannot write " + path);
+}
+
+class Viewer {
+ public:
+  Viewer(const Options& o, GLFWwindow* window) : opt_(o), window_(window), techniques_(sp::tech::TechniqueNames()) {
+    sp::DeviceDesc dd;
+    dd.backend = o.backend;
+    dd.debug = o.validate;
+    dd.x11Display = glfwGetX11Display();
+    device_ = sp::CreateDevice(dd);
+    scene_ = sp::scene::LoadScene(o.scene);
+    camera_ = std::make_unique<viewer::FlyCamera>(scene_.camera);
+    light_ = scene_.light;
+    technique_ = o.technique;
+    params_ = o.params;
+    glfwGetFramebufferSize(window_, &width_, &height_);
+    sp::SwapChainDesc sd;
+    sd.window = {glfwGetX11Display(), glfwGetX11Window(window_)};
+    sd.width = uint32_t(width_);
+    sd.height = uint32_t(height_);
+    // The renderer's colour target is sRGB; a back buffer of the same format takes it by CopyResource.
+    sd.format = sp::FORMAT_R8G8B8A8_UNORM_SRGB;
+    sd.bufferCount = 2;
+    sd.syncInterval = o.sync;
+    swapChain_ = sp::CreateSwapChain(*device_, sd);
+    Rebuild();
+  }
+
+  ~Viewer() {
+    renderer_.reset();
+    swapChain_.reset();  // before the device, as DXGI wants its swap chain released first
+  }
+
+  void Frame() {
+    int w = 0, h = 0;
+    glfwGetFramebufferSize(window_, &w, &h);
+    if (w == 0 || h == 0) return;  // minimised: nothing to show
+    if (w != width_ || h != height_) {
+      width_ = w, height_ = h;
+      swapChain_->ResizeBuffers(0, uint32_t(w), uint32_t(h), sp::FORMAT_UNKNOWN);
+      Rebuild();
+    }
+    // --- Path recording hook (viewerui branch): record camera_->camera() per frame here, or
+    // --- replace it with a recorded path's camera before rendering.
+    renderer_->RenderFrame(camera_->camera(), light_);
+    sp::DeviceContext* ctx = device_->GetImmediateContext();
+    ctx->CopyResource(swapChain_->GetBuffer(0), renderer_->colorTarget());
+    // --- UI hook (viewerui branch): draw the ImGui panel into swapChain_->GetBuffer(0) here,
+    // --- through an RTV released before the next ResizeBuffers.
+    swapChain_->Present(opt_.sync);
+  }
+
+  void Screenshot(const std::string& path) {
+    WritePng(path, uint32_t(width_), uint32_t(height_),
+             WindowPixels(glfwGetX11Display(), glfwGetX11Window(window_), uint32_t(width_), uint32_t(height_)));
+    std::printf("screenshot: %s (%dx%d)\n", path.c_str(), width_, height_);
+  }
+
+  // Interactive controls (GLFW callbacks forward here).
+  void OnKey(int key, int action) {
+    if (action != GLFW_PRESS) return;
+    if (key == GLFW_KEY_ESCAPE) glfwSetWindowShouldClose(window_, GLFW_TRUE);
+    if (key >= GLFW_KEY_1 && key <= GLFW_KEY_9 && size_t(key - GLFW_KEY_1) < techniques_.size()) {
+      technique_ = techniques_[size_t(key - GLFW_KEY_1)];
+      params_.clear();
+      param_ = 0;
+      Rebuild();
+    }
+    if (key == GLFW_KEY_TAB && !specs_.empty()) {
+      param_ = (param_ + 1) % specs_.size();
+      Describe();
+    }
+    if ((key == GLFW_KEY_LEFT_BRACKET || key == GLFW_KEY_RIGHT_BRACKET) && !specs_.empty()) Step(key == GLFW_KEY_RIGHT_BRACKET ? 1 : -1);
+    if (key == GLFW_KEY_F12) Screenshot("viewer-" + std::to_string(++screenshots_) + ".png");
+  }
+
+  void OnMouse(double x, double y) {
+    double dx = x - mouseX_, dy = y - mouseY_;
+    mouseX_ = x, mouseY_ = y;
+    if (glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS) camera_->Look(dx, dy);
+    if (glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS) viewer::DragLight(light_, dx, dy);
+  }
+
+  void Move(double seconds) {
+    float speed = float(seconds) * (glfwGetKey(window_, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS ? 20.0f : 5.0f);
+    auto down = [&](int k) { return glfwGetKey(window_, k) == GLFW_PRESS ? 1.0f : 0.0f; };
+    camera_->Move((down(GLFW_KEY_D) - down(GLFW_KEY_A)) * speed, (down(GLFW_KEY_E) - down(GLFW_KEY_Q)) * speed,
+                  (down(GLFW_KEY_W) - down(GLFW_KEY_S)) * speed);
+  }
+
+  uint64_t ValidationErrors() const { return device_->ValidationErrorCount(); }
+
+ private:
+  // A new technique (or new parameters, or a new size): the renderer is made again, as
+  // `shadowport render` makes it, so a frame of the viewer is a frame of `render`.
+  void Rebuild() {
+    renderer_.reset();
+    std::unique_ptr<sp::tech::Technique> t = sp::tech::CreateTechnique(technique_);
+    specs_ = t->Params();
+    sp::tech::ParamValues values = sp::tech::ParamValues::Parse(technique_, specs_, params_);
+    params_ = values.all();
+    t->Configure(*device_, values);
+    renderer_ = std::make_unique<sp::tech::Renderer>(*device_, scene_, std::move(t), uint32_t(width_), uint32_t(height_));
+    Describe();
+  }
+
+  void Step(int direction) {
+    const sp::tech::ParamSpec& s = specs_[param_];
+    std::string& v = params_[s.name];
+    switch (s.kind) {
+      case sp::tech::ParamSpec::Choice: {
+        auto it = std::find(s.choices.begin(), s.choices.end(), v);
+        size_t i = it == s.choices.end() ? 0 : size_t(it - s.choices.begin());
+        v = s.choices[(i + s.choices.size() + size_t(direction)) % s.choices.size()];
+        break;
+      }
+      case sp::tech::ParamSpec::Int: v = std::to_string(std::clamp(std::stoi(v) + direction, int(s.min), int(s.max))); break;
+      case sp::tech::ParamSpec::Float: {
+        double step = (s.max - s.min) / 20.0;
+        v = std::to_string(std::clamp(std::stod(v) + direction * step, s.min, s.max));
+        break;
+      }
+      case sp::tech::ParamSpec::Text: return;  // free text: set it with --param
+    }
+    try {
+      Rebuild();
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "viewer: %s\n", e.what());
+    }
+  }
+
+  void Describe() {
+    std::string title = "ShadowPort viewer - " + std::string(sp::BackendName(opt_.backend)) + " - " + technique_;
+    for (size_t i = 0; i < specs_.size(); ++i)
+      title += (i == param_ ? "  [" : "  ") + specs_[i].name + "=" + params_[specs_[i].name] + (i == param_ ? "]" : "");
+    glfwSetWindowTitle(window_, title.c_str());
+    if (opt_.frames == 0) std::printf("%s\n", title.c_str());
+  }
+
+  Options opt_;
+  GLFWwindow* window_;
+  std::vector<std::string> techniques_;
+  sp::Ref<sp::Device> device_;
+  sp::scene::Scene scene_;
+  std::unique_ptr<viewer::FlyCamera> camera_;
+  sp::scene::DirectionalLight light_;
+  std::string technique_;
+  std::map<std::string, std::string> params_;
+  std::vector<sp::tech::ParamSpec> specs_;
+  size_t param_ = 0;
+  std::unique_ptr<sp::SwapChain> swapChain_;
+  std::unique_ptr<sp::tech::Renderer> renderer_;
+  int width_ = 0, height_ = 0;
+  double mouseX_ = 0, mouseY_ = 0;
+  int screenshots_ = 0;
+};
+
+int Run(const Options& o) {
+  if (!glfwInit()) throw std::runtime_error("glfwInit failed (no X display? set DISPLAY, or run under xvfb-run)");
+  glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);  // the RHI owns the API; GLFW only makes the window
+  // A fixed-size window for screenshot runs: the picture must have exactly --size.
+  glfwWindowHint(GLFW_RESIZABLE, o.frames > 0 ? GLFW_FALSE : GLFW_TRUE);
+  GLFWwindow* window = glfwCreateWindow(int(o.width), int(o.height), "ShadowPort viewer", nullptr, nullptr);
+  if (!window) {
+    glfwTerminate();
+    throw std::runtime_error("glfwCreateWindow failed");
+  }
+  int rc = 0;
+  {
+    Viewer v(o, window);
+    glfwSetWindowUserPointer(window, &v);
+    glfwSetKeyCallback(window, [](GLFWwindow* w, int key, int, int action, int) { static_cast<Viewer*>(glfwGetWindowUserPointer(w))->OnKey(key, action); });
+    glfwSetCursorPosCallback(window, [](GLFWwindow* w, double x, double y) { static_cast<Viewer*>(glfwGetWindowUserPointer(w))->OnMouse(x, y); });
+    if (o.frames > 0) {
+      for (int i = 0; i < o.frames; ++i) {
+        glfwPollEvents();
+        v.Frame();
+      }
+      v.Screenshot(o.screenshot);
+    } else {
+      auto last = std::chrono::steady_clock::now();
+      while (!glfwWindowShouldClose(window)) {
+        glfwPollEvents();
+        auto now = std::chrono::steady_clock::now();
+        v.Move(std::chrono::duration<double>(now - last).count());
+        last = now;
+        v.Frame();
+      }
+    }
+    if (v.ValidationErrors()) {
+      std::fprintf(stderr, "viewer: %llu validation error(s)\n", static_cast<unsigned long long>(v.ValidationErrors()));
+      rc = 1;
+    }
+  }
+  glfwDestroyWindow(window);
+  glfwTerminate();
+  return rc;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return Run(ParseOptions(argc, argv));
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "viewer: %s\n", e.what());
+    return 2;
+  }
+}
