@@ -21,14 +21,9 @@ int CountXError(Display*, XErrorEvent*) {
   return 0;
 }
 
-const char* kShaders = R"(
-cbuffer Color : register(b0) { float4 color; };
-float4 VSFull(uint id : SV_VertexID) : SV_Position {
-  float2 p = float2((id << 1) & 2, id & 2);
-  return float4(p * float2(2, -2) + float2(-1, 1), 0, 1);
-}
-float4 PSColor(float4 p : SV_Position) : SV_Target { return color; }
-)";
+// Rectangles come from gpu::RectDrawer's vertex shader; this colours them.
+const char* kColorPs = "cbuffer Color : register(b0) { float4 color; };\n"
+                       "float4 PSColor(float4 p : SV_Position) : SV_Target { return color; }\n";
 
 struct Rect {
   uint32_t x, y, w, h;
@@ -116,24 +111,22 @@ class SwapChainTest : public BackendTest {
     return out;
   }
 
-  // Draws each rectangle (in order, through its viewport) into the swap chain's back buffer.
+  // Draws each rectangle (in order, in pixels from the top left) into the swap chain's back buffer.
   void Render(SwapChain& sc, const std::vector<Rect>& rects) {
     Texture2D* buffer = sc.GetBuffer(0);
+    const TEXTURE2D_DESC d = buffer->GetDesc();
     Ref<RenderTargetView> rtv = device().CreateRenderTargetView(buffer);
-    Ref<VertexShader> vs = device().CreateVertexShader(CompileHlsl(kShaders, "vs_5_0", "VSFull"));
-    Ref<PixelShader> ps = device().CreatePixelShader(CompileHlsl(kShaders, "ps_5_0", "PSColor"));
+    RectDrawer rect(device());
+    Ref<PixelShader> ps = device().CreatePixelShader(CompileHlsl(kColorPs, "ps_5_0", "PSColor"));
     Ref<Buffer> cb = MakeBuffer(device(), BIND_CONSTANT_BUFFER, nullptr, 16);
     RenderTargetView* rtvs[] = {rtv.get()};
     ctx().OMSetRenderTargets(1, rtvs, nullptr);
-    ctx().VSSetShader(vs.get());
+    SetViewport(ctx(), float(d.Width), float(d.Height));
     ctx().PSSetShader(ps.get());
     ctx().PSSetConstantBuffers(0, {cb.get()});
-    ctx().IASetPrimitiveTopology(PRIMITIVE_TOPOLOGY_TRIANGLELIST);
     for (const Rect& r : rects) {
-      VIEWPORT vp{float(r.x), float(r.y), float(r.w), float(r.h), 0, 1};
-      ctx().RSSetViewports(1, &vp);
       ctx().UpdateSubresource(cb.get(), 0, nullptr, r.color, 0, 0);
-      ctx().Draw(3, 0);
+      rect.Draw(ctx(), float(r.x), float(r.y), float(r.x + r.w), float(r.y + r.h), float(d.Width), float(d.Height));
     }
     // DXGI requires the back buffer's views released before ResizeBuffers; the tests do so.
     ctx().ClearState();
