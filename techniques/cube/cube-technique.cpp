@@ -37,7 +37,7 @@ class CubeTechnique final : public Technique {
   std::string Name() const override { return "cube"; }
 
   std::vector<ParamSpec> Params() const override {
-    return {
+    std::vector<ParamSpec> specs = {
         {ParamSpec::Int, "light", "the point light shadowed (lights=one) or judged by the lab (lights=all): index into the scene's point lights = local light index", "0", 0, kMaxLocalLights - 1, {}},
         {ParamSpec::Int, "resolution", "width and height of each cube face in texels (resolution_from=screen: the largest)", "512", 16, 8192, {}},
         {ParamSpec::Float, "near", "near plane of every face, in world units (casters closer to the light are not drawn)", "0.05", 1e-4, 1e3, {}},
@@ -47,7 +47,8 @@ class CubeTechnique final : public Technique {
         {ParamSpec::Float, "radial_bias", "storage=radial: constant bias in world units", "0.01", 0, 1e3, {}},
         {ParamSpec::Int, "cull_faces", "1: skip the faces whose frustum (widened by the filter's reach) meets neither the camera's nor a visible receiver", "1", 0, 1, {}},
         {ParamSpec::Float, "radial_slope_bias", "storage=radial: bias in texel footprints times tan(angle to the light), at most 10", "1.5", 0, 100, {}},
-        {ParamSpec::Choice, "filter", "comparison filter: the hardware's seamless 2x2, or box/gauss kernels whose taps cross face edges", "hw2x2", 0, 0, {"hw2x2", "box", "gauss"}},
+        {ParamSpec::Choice, "filter", "comparison filter: the hardware's seamless 2x2, box/gauss kernels whose taps cross face edges, or pcss "
+                                      "(the light as a sphere of radius light_size; storage=depth)", "hw2x2", 0, 0, {"hw2x2", "box", "gauss", "pcss"}},
         PcfKernelParam("box, gauss"),
         {ParamSpec::Choice, "lights", "one: the point light `light`; all: up to max_lights point lights, those lighting visible receivers, largest on screen first", "one", 0, 0, {"one", "all"}},
         {ParamSpec::Int, "max_lights", "lights=all: most point lights shadowed per frame (the rest stay unshadowed)", "8", 1, kMaxCubeSlots, {}},
@@ -56,6 +57,8 @@ class CubeTechnique final : public Technique {
         {ParamSpec::Float, "texels_per_pixel", "resolution_from=screen: face texels per screen pixel across the light's range sphere", "1.0", 0.01, 100, {}},
         {ParamSpec::Choice, "faces_pass", "per_face: one pass per face; single: one instanced pass into all six faces, the vertex shader choosing the face (storage=depth, needs the device capability vsRenderTargetArrayIndex)", "per_face", 0, 0, {"per_face", "single"}},
     };
+    for (const ParamSpec& p : PcssParamSpecs(PcssLight::Local)) specs.push_back(p);
+    return specs;
   }
 
   void Configure(Device& device, const ParamValues& p) override {
@@ -68,9 +71,13 @@ class CubeTechnique final : public Technique {
     radialSlope_ = p.getFloat("radial_slope_bias");
     cullFaces_ = p.getInt("cull_faces") != 0;
     const std::string& filter = p.getChoice("filter");
-    filter_ = filter == "hw2x2" ? 0 : filter == "box" ? 1 : 2;
+    filter_ = PcfFilterIndex(filter);
     kernel_ = std::stoi(p.getChoice("kernel"));
     CheckPcfKernel("cube", filter_, kernel_);
+    pcss_ = PcssSettingsFrom(p);
+    // The search reads the stored depths, which storage=radial keeps as distances compared in the
+    // shader on Gathers: its own box would be needed; not offered.
+    if (filter_ == kPcssFilter && radial_) throw std::invalid_argument("cube: filter=pcss needs storage=depth (storage=radial has no PCSS path)");
     allLights_ = p.getChoice("lights") == "all";
     slotCount_ = allLights_ ? uint32_t(p.getInt("max_lights")) : 1;
     fromScreen_ = p.getChoice("resolution_from") == "screen";
@@ -100,6 +107,13 @@ class CubeTechnique final : public Technique {
     smp.AddressU = smp.AddressV = smp.AddressW = TEXTURE_ADDRESS_CLAMP;
     smp.ComparisonFunc = radial_ ? COMPARISON_NEVER : COMPARISON_LESS_EQUAL;
     sampler_ = device.CreateSamplerState(smp);
+    pointSampler_ = nullptr;
+    if (filter_ == kPcssFilter) {
+      SAMPLER_DESC ps;
+      ps.Filter = FILTER_MIN_MAG_MIP_POINT;
+      ps.AddressU = ps.AddressV = ps.AddressW = TEXTURE_ADDRESS_CLAMP;
+      pointSampler_ = device.CreateSamplerState(ps);
+    }
     constants_ = MakeConstantBuffer(device, sizeof(Constants), "CubeShadow constants");
     ConfigureFacesPass(device, p);
   }
@@ -119,6 +133,7 @@ class CubeTechnique final : public Technique {
     c.radialBias = radialBias_;
     c.radialSlope = radialSlope_;
     c.labSlot = kMaxCubeSlots;  // none, unless the judged light has a map this frame
+    c.pcss = glm::vec4(pcss_.lightSize, float(pcss_.searchTaps), float(pcss_.maxKernel), 0.0f);
     for (auto& slot : c.slots) slot.light = ~0u;
 
     ShaderResourceView* none = nullptr;
@@ -151,7 +166,7 @@ class CubeTechnique final : public Technique {
     return {{"SP_CUBE_RADIAL", radial_ ? "1" : "0"},
             {"SP_CUBE_SLOTS", std::to_string(slotCount_)},
             {"SHADOW_FILTER", std::to_string(filter_)},
-            {"SHADOW_KERNEL", std::to_string(kernel_)}};
+            {"SHADOW_KERNEL", std::to_string(filter_ == kPcssFilter ? 3 : kernel_)}};
   }
 
   void BindLighting(DeviceContext& ctx) override {
@@ -159,7 +174,7 @@ class CubeTechnique final : public Technique {
     ShaderResourceView* srvs[kMaxCubeSlots] = {};
     for (uint32_t k = 0; k < slotCount_; ++k) srvs[k] = slots_[k].light == ~0u ? nullptr : slots_[k].srv.get();
     ctx.PSSetShaderResources(0, slotCount_, srvs);
-    ctx.PSSetSamplers(0, {sampler_.get()});
+    ctx.PSSetSamplers(0, {sampler_.get(), pointSampler_.get()});
   }
 
   // Every cube held, and with storage=radial the depth buffers of their passes.
@@ -305,7 +320,9 @@ class CubeTechnique final : public Technique {
     VIEWPORT vp{0, 0, float(slot.resolution), float(slot.resolution), 0, 1};
     ctx.RSSetViewports(1, &vp);
     // The lookup reads past a face's edge: the 2x2 filter one texel, a kernel its half width more.
-    const float widen = 1.0f + 2.0f * float(2 + (filter_ ? kernel_ / 2 : 0)) / float(slot.resolution);
+    // pcss: search and box stay within pcss_max_kernel / 2 texels.
+    const int reach = filter_ == kPcssFilter ? pcss_.maxKernel / 2 + 1 : filter_ ? kernel_ / 2 : 0;
+    const float widen = 1.0f + 2.0f * float(2 + reach) / float(slot.resolution);
     if (slot.allFaces) return RenderSlotInOnePass(ctx, drawer, frame, slot, l, camera, widen);
     for (int f = 0; f < 6; ++f) {
       glm::mat4 viewProj = cube::FaceViewProj(f, l.position, near_, l.range);
@@ -345,8 +362,9 @@ class CubeTechnique final : public Technique {
     uint32_t labSlot;
     float pad[2];
     SlotConstants slots[kMaxCubeSlots];
+    glm::vec4 pcss;  // filter=pcss: radius, search taps, max kernel, unused
   };
-  static_assert(sizeof(SlotConstants) == 32 && sizeof(Constants) == 32 + 32 * kMaxCubeSlots);
+  static_assert(sizeof(SlotConstants) == 32 && sizeof(Constants) == 48 + 32 * kMaxCubeSlots);
 
   Device* device_ = nullptr;
   uint32_t light_ = 0, resolution_ = 0, minResolution_ = 64;
@@ -354,13 +372,14 @@ class CubeTechnique final : public Technique {
   bool radial_ = false, allLights_ = false, fromScreen_ = false, cullFaces_ = true, onePass_ = false;
   int filter_ = 0, kernel_ = 3;
   float radialBias_ = 0, radialSlope_ = 0;
+  PcssSettings pcss_;
   uint32_t slotCount_ = 1, labSlot_ = kMaxCubeSlots;
   std::vector<Slot> slots_;
   std::vector<uint32_t> visible_;
   Ref<VertexShader> radialVs_;
   Ref<PixelShader> radialPs_;
   Ref<RasterizerState> rasterizer_;
-  Ref<SamplerState> sampler_;
+  Ref<SamplerState> sampler_, pointSampler_;  // pointSampler_: filter=pcss's blocker search (s1)
   Ref<Buffer> constants_;
   uint64_t trianglesSubmitted_ = 0;
   uint32_t facesRendered_ = 0;

@@ -56,7 +56,7 @@ class VsdctTechnique final : public Technique {
         {ParamSpec::Float, "near", "near plane of every face, in world units (casters closer to the light are not drawn)", "0.05", 1e-4, 1e3, {}},
         {ParamSpec::Int, "depth_bias", "D3D11 DepthBias (units of the depth format)", "200", -1e7, 1e7, {}},
         {ParamSpec::Float, "slope_bias", "D3D11 SlopeScaledDepthBias", "2.0", -100, 100, {}},
-        {ParamSpec::Choice, "filter", "shadow filter (common/shadow-filter.hlsli)", "hw2x2", 0, 0, {"hw2x2", "box", "gauss", "gathercmp", "poisson"}},
+        {ParamSpec::Choice, "filter", "shadow filter (common/shadow-filter.hlsli)", "hw2x2", 0, 0, {"hw2x2", "box", "gauss", "gathercmp", "poisson", "pcss"}},
         PcfKernelParam("box, gauss, gathercmp, poisson"),
         {ParamSpec::Int, "guard", "guard band around each tile in texels, at least the filter's reach (hw2x2: 1, others: kernel/2 + 1); 0: clamp taps into the face instead",
          "5", 0, 64, {}},
@@ -81,6 +81,12 @@ class VsdctTechnique final : public Technique {
     near_ = p.getFloat("near");
     guard_ = uint32_t(p.getInt("guard"));
     cullFaces_ = p.getInt("cull_faces") != 0;
+    // PCSS reads a footprint chosen per pixel, up to pcss_max_kernel wide, by point loads and a box in
+    // one face's texels; vsdct's faces are atlas tiles of different resolutions whose guard bands
+    // are sized for a fixed kernel, and its lookup through the indirection has no such path yet.
+    if (p.getChoice("filter") == "pcss")
+      throw std::invalid_argument("vsdct: filter=pcss is not offered: the faces are atlas tiles of their own resolutions with guard bands sized "
+                                  "for a fixed kernel, and the indirect lookup has no PCSS path (use cube)");
     for (int i = 0; i < 5; ++i)
       if (p.getChoice("filter") == kFilters[i]) filter_ = i;
     kernel_ = p.getInt("kernel");
