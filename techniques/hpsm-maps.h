@@ -22,9 +22,10 @@ struct HpsmSettings {
   float eps = 0.0f;  // hpsm: the largest plane residual, in depth units
   bool counters = true;  // the lit pass counts its decisions (HpsmCounterSource)
   int pcssMaxKernel = 0;  // filter=pcss: the pcss_max_kernel the reach was derived from (HPSM_PCSS_MAX_KERNEL)
+  bool gatherBuild = true;  // hpsm_build: the build fills its tile with GatherRed (false: Load)
 };
 
-// The parameters: accel, hpsm_block, hpsm_eps, hpsm_counters.
+// The parameters: accel, hpsm_block, hpsm_eps, hpsm_counters, hpsm_build.
 std::vector<ParamSpec> HpsmParams();
 // Reads them for a technique filtering with (filter, kernel; pcss: pcss_max_kernel) a map of `resolution` texels;
 // throws std::invalid_argument naming the parameter for values that cannot work.
@@ -59,6 +60,7 @@ class HpsmMaps {
   Ref<ShaderResourceView> srv_;
   Ref<UnorderedAccessView> uav_;
   Ref<ComputeShader> build_;
+  Ref<SamplerState> point_;  // hpsm_build=gather
   Ref<Buffer> constants_, counters_, countersStaging_;
   Ref<UnorderedAccessView> countersUav_;
 };
