@@ -46,6 +46,15 @@ std::vector<ParamSpec> HpsmParams() {
   };
 }
 
+ParamSpec UnofferedAccelParam(const std::string& why) {
+  return {ParamSpec::Choice, "accel", "not offered (" + why + "): only none", "none", 0, 0, {"none", "hpsm", "minmax"}};
+}
+
+void RefuseAccel(const ParamValues& p, const std::string& technique, const std::string& why) {
+  const std::string& a = p.getChoice("accel");
+  if (a != "none") throw std::invalid_argument(technique + ": accel=" + a + " is not offered: " + why);
+}
+
 HpsmSettings ReadHpsmSettings(const ParamValues& p, int filter, int kernel, uint32_t resolution) {
   HpsmSettings s;
   const std::string& a = p.getChoice("accel");

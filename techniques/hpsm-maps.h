@@ -27,6 +27,11 @@ struct HpsmSettings {
 
 // The parameters: accel, hpsm_block, hpsm_eps, hpsm_counters, hpsm_build.
 std::vector<ParamSpec> HpsmParams();
+// For techniques that do not offer acceleration: an `accel` parameter whose only working value is
+// none, so that asking for it is refused by RefuseAccel with the technique's reason instead of as
+// an unknown parameter.
+ParamSpec UnofferedAccelParam(const std::string& why);
+void RefuseAccel(const ParamValues& p, const std::string& technique, const std::string& why);
 // Reads them for a technique filtering with (filter, kernel; pcss: pcss_max_kernel) a map of `resolution` texels;
 // throws std::invalid_argument naming the parameter for values that cannot work.
 HpsmSettings ReadHpsmSettings(const ParamValues& p, int filter, int kernel, uint32_t resolution);

@@ -2,7 +2,8 @@
 // cube-room.h, where a point light's six faces each see a wall (one plane per face) and spheres cast
 // shadows onto every face and across a face edge, the accelerated lit pass draws the plain one's
 // image bit for bit from all three room cameras, the walls are decided by planes, and the shadows
-// stay exactly those of the CPU's segment-sphere test; bad combinations are refused by name.
+// stay exactly those of the CPU's segment-sphere test; bad combinations are refused by name, and
+// paraboloid and vsdct refuse accel with their reason.
 #include "backend-test.h"
 #include "cube-room.h"
 #include <sp/tech/hpsm-counters.h>
@@ -82,6 +83,17 @@ TEST_P(CubeHpsmTest, BadAccelParametersAreRefusedByName) {
   expectError({{"accel", "hpsm"}, {"resolution_from", "screen"}, {"min_resolution", "16"}, {"hpsm_block", "32"}}, "hpsm_block");
   expectError({{"accel", "hpsm"}, {"resolution", "16"}, {"filter", "box"}, {"kernel", "15"}}, "resolution");
   expectError({{"accel", "hpsm"}, {"hpsm_build", "fetch"}}, "hpsm_build");
+  // The other point-light techniques refuse accel by name, with their reason.
+  for (const char* name : {"paraboloid", "vsdct"}) {
+    std::unique_ptr<tech::Technique> t = tech::CreateTechnique(name);
+    try {
+      t->Configure(device(), tech::ParamValues::Parse(name, t->Params(), {{"accel", "hpsm"}}));
+      ADD_FAILURE() << name << " accepted accel=hpsm";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(std::string(name) + ": accel=hpsm is not offered: "), std::string::npos) << e.what();
+    }
+    EXPECT_NO_THROW(t->Configure(device(), tech::ParamValues::Parse(name, t->Params(), {{"accel", "none"}}))) << name;
+  }
 }
 
 SP_INSTANTIATE_BACKEND_TESTS(CubeHpsmTest);
