@@ -82,12 +82,9 @@ uint CubeHpsmDecide(Texture2DArray<float4> hpsm, CubeSlot slot, float3 d, float3
   float refCentre = z + dot(m - s, G), refExtent = dot(abs(G), e);
   slack += kHpsmRounding * (abs(refCentre) + refExtent);
 #if SHADOW_ACCEL == 2
-  int2 b0 = t0 / HPSM_BLOCK, b1 = t1 / HPSM_BLOCK;
-  float2 m00 = hpsm.Load(int4(b0.x, b0.y, layer, 0)).xy, m10 = hpsm.Load(int4(b1.x, b0.y, layer, 0)).xy;
-  float2 m01 = hpsm.Load(int4(b0.x, b1.y, layer, 0)).xy, m11 = hpsm.Load(int4(b1.x, b1.y, layer, 0)).xy;
-  float dLo = min(min(m00.x, m10.x), min(m01.x, m11.x)), dHi = max(max(m00.y, m10.y), max(m01.y, m11.y));
-  if (refCentre + refExtent + slack <= dLo) return kHpsmLitMinMax;
-  if (refCentre - refExtent - shadowMargin - slack > dHi) return kHpsmShadowedMinMax;
+  float2 range = HpsmMinMaxOver(hpsm, t0, t1, layer);
+  if (refCentre + refExtent + slack <= range.x) return kHpsmLitMinMax;
+  if (refCentre - refExtent - shadowMargin - slack > range.y) return kHpsmShadowedMinMax;
   return kHpsmFiltered;
 #else
   int2 b = fs / HPSM_BLOCK;
