@@ -77,6 +77,7 @@ TEST_P(CubeHpsmTest, BadAccelParametersAreRefusedByName) {
     }
   };
   expectError({{"accel", "hpsm"}, {"storage", "radial"}}, "storage=depth");
+  expectError({{"accel", "minmax"}, {"filter", "pcss"}}, "not offered with filter=pcss");
   expectError({{"accel", "fast"}}, "accel");
   expectError({{"accel", "minmax"}, {"hpsm_block", "6"}}, "hpsm_block");
   expectError({{"accel", "hpsm"}, {"resolution", "64"}, {"hpsm_block", "128"}}, "hpsm_block");
