@@ -154,6 +154,8 @@ nlohmann::json RunToJson(const RunResult& r, const std::map<std::string, std::st
       {"false_lit_pct", Round(r.accuracy.falseLitPct(), 1e4)},
       {"false_shadow_pct", Round(r.accuracy.falseShadowPct(), 1e4)},
       {"mean_abs_error", Round(r.accuracy.meanAbsError(), 1e6)},
+      {"penumbra_mean_abs_error", Round(r.accuracy.penumbraMeanAbsError(), 1e6)},
+      {"penumbra_pixels", r.accuracy.penumbra},
       {"texels_per_pixel_median", r.texelsPerPixelMedian},
       {"texels_per_pixel_p05", r.texelsPerPixelP05},
       {"max_aliasing_error", r.maxAliasingError},

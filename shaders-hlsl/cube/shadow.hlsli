@@ -160,9 +160,16 @@ float CubeSlotVisibility(TextureCube<float> map, CubeSlot slot, float3 worldPos,
 }
 
 // Slot k, when it shadows `light`, decides; a light without a slot is unshadowed.
+#if defined(SHADOW_ACCEL) && SHADOW_ACCEL != 0
+#include "cube/hpsm.hlsli"
+#define SP_CUBE_SLOT(k)                                                                   \
+  if (k < SP_CUBE_SLOTS && cubeSlots[k].light == light)                                  \
+    return CubeSlotVisibilityAccel(CubeShadowMap##k, CubeHpsm##k, cubeSlots[k], worldPos, worldNormal);
+#else
 #define SP_CUBE_SLOT(k)                                                                   \
   if (k < SP_CUBE_SLOTS && cubeSlots[k].light == light)                                  \
     return CubeSlotVisibility(CubeShadowMap##k, cubeSlots[k], worldPos, worldNormal);
+#endif
 
 #define SP_LOCAL_SHADOWS 1
 float LocalShadowVisibility(uint light, float3 worldPos, float3 worldNormal) {

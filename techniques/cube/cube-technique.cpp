@@ -17,11 +17,18 @@
 // R32_FLOAT cube of light-to-caster distance (rendered with a D32 depth buffer per face), compared
 // in the shader on 2x2 Gathers with bilinear weights and a receiver slope bias (no rasterizer
 // bias reaches a colour target).
+//
+// accel (techniques/hpsm-maps.h): every face of every slot's cube is a layer of the slot's
+// secondary maps, built from a 2D-array view of the cube; a face is a perspective map, so a
+// receiver plane's planar z is affine in its texels (the plane case as for spot), and the lit pass
+// decides footprints that lie inside one face first (shaders-hlsl/cube/hpsm.hlsli).
 #include <algorithm>
+#include <memory>
 #include <stdexcept>
 
 #include "cube/cube-culling.h"
 #include "cube/cube-faces.h"
+#include "hpsm-maps.h"
 #include "local-lights.h"
 #include "pcf-params.h"
 #include <sp/tech/technique.h>
@@ -32,7 +39,7 @@ namespace {
 // Cube maps one frame may hold (t0..t7 of the lighting include).
 constexpr uint32_t kMaxCubeSlots = 8;
 
-class CubeTechnique final : public Technique {
+class CubeTechnique final : public Technique, public HpsmCounterSource {
  public:
   std::string Name() const override { return "cube"; }
 
@@ -58,6 +65,7 @@ class CubeTechnique final : public Technique {
         {ParamSpec::Choice, "faces_pass", "per_face: one pass per face; single: one instanced pass into all six faces, the vertex shader choosing the face (storage=depth, needs the device capability vsRenderTargetArrayIndex)", "per_face", 0, 0, {"per_face", "single"}},
     };
     for (const ParamSpec& p : PcssParamSpecs(PcssLight::Local)) specs.push_back(p);
+    for (ParamSpec& h : HpsmParams()) specs.push_back(h);
     return specs;
   }
 
@@ -86,6 +94,7 @@ class CubeTechnique final : public Technique {
     if (fromScreen_ && minResolution_ > resolution_)
       throw std::invalid_argument("cube: min_resolution=" + std::to_string(minResolution_) + " is above resolution=" + std::to_string(resolution_));
     slots_.assign(slotCount_, {});
+    ConfigureAccel(p);
 
     if (radial_) {
       radialVs_ = device.CreateVertexShader(CompileTechniqueShader("cube/radial.hlsl", "vs_5_0", "VSMain"));
@@ -159,14 +168,21 @@ class CubeTechnique final : public Technique {
     }
     ctx.UpdateSubresource(constants_.get(), 0, nullptr, &c, 0, 0);
     labSlot_ = c.labSlot;
+    if (hpsm_.accel != ShadowAccel::None) {
+      ctx.OMSetRenderTargets(0, nullptr, nullptr);
+      GpuTimer::Scope built(frame.timer, ctx, "hpsm");
+      for (uint32_t k = 0; k < slotCount_ && k < chosen.size(); ++k) slots_[k].hpsm->Build(ctx, slots_[k].faceArray.get());
+    }
   }
 
   std::string LightingInclude() const override { return "cube/shadow.hlsli"; }
   std::vector<hlsl::Define> LightingDefines() const override {
-    return {{"SP_CUBE_RADIAL", radial_ ? "1" : "0"},
+    std::vector<hlsl::Define> d = {{"SP_CUBE_RADIAL", radial_ ? "1" : "0"},
             {"SP_CUBE_SLOTS", std::to_string(slotCount_)},
             {"SHADOW_FILTER", std::to_string(filter_)},
             {"SHADOW_KERNEL", std::to_string(filter_ == kPcssFilter ? 3 : kernel_)}};
+    for (hlsl::Define& h : HpsmDefines(hpsm_)) d.push_back(h);
+    return d;
   }
 
   void BindLighting(DeviceContext& ctx) override {
@@ -175,12 +191,21 @@ class CubeTechnique final : public Technique {
     for (uint32_t k = 0; k < slotCount_; ++k) srvs[k] = slots_[k].light == ~0u ? nullptr : slots_[k].srv.get();
     ctx.PSSetShaderResources(0, slotCount_, srvs);
     ctx.PSSetSamplers(0, {sampler_.get(), pointSampler_.get()});
+    if (hpsm_.accel != ShadowAccel::None) {
+      // t8 + k: CubeHpsm<k>; every slot counts into slot 0's counters (slot 0 is filled first).
+      for (uint32_t k = 0; k < slotCount_; ++k) srvs[k] = slots_[k].light == ~0u ? nullptr : slots_[k].hpsm->srv();
+      ctx.PSSetShaderResources(kMaxCubeSlots, slotCount_, srvs);
+      if (slots_[0].hpsm) slots_[0].hpsm->BindCounters(ctx);
+    }
+  }
+  HpsmCounts HpsmDecisions() const override {
+    return slots_.empty() || !slots_[0].hpsm ? HpsmCounts{} : slots_[0].hpsm->ReadCounters(*device_->GetImmediateContext());
   }
 
   // Every cube held, and with storage=radial the depth buffers of their passes.
   ShadowStats Stats() const override {
     uint64_t bytes = 0;
-    for (const Slot& slot : slots_) bytes += uint64_t(slot.resolution) * slot.resolution * 4 * (radial_ ? 7 : 6);
+    for (const Slot& slot : slots_) bytes += uint64_t(slot.resolution) * slot.resolution * 4 * (radial_ ? 7 : 6) + (slot.hpsm ? slot.hpsm->memoryBytes() : 0);
     return {bytes, trianglesSubmitted_, facesRendered_};
   }
   // The judged light's six faces.
@@ -199,7 +224,28 @@ class CubeTechnique final : public Technique {
     std::vector<Ref<RenderTargetView>> faceRtvs;
     Ref<ShaderResourceView> srv;
     Ref<DepthStencilView> allFaces;  // faces_pass=single
+    Ref<ShaderResourceView> faceArray;  // accel: the six faces as a Texture2DArray, the build's input
+    std::shared_ptr<HpsmMaps> hpsm;     // accel: one layer per face
   };
+
+  // accel: storage=depth only (radial distance is not affine in a face's texels), and a block no
+  // wider than the smallest face the slots may get.
+  void ConfigureAccel(const ParamValues& p) {
+    uint32_t smallest = fromScreen_ ? minResolution_ : resolution_;
+    // cube's PCSS searches and filters in direction space across face edges (shadow-pcss-cube):
+    // its reach in a face's texels is not the 2D bound hpsm.hlsli derives.
+    if (filter_ == kPcssFilter && p.getChoice("accel") != "none")
+      throw std::invalid_argument("cube: accel=" + p.getChoice("accel") + " is not offered with filter=pcss (its search and box run in direction space across face edges, not in one face's texels)");
+    hpsm_ = ReadHpsmSettings(p, filter_, kernel_, smallest);
+    if (hpsm_.accel == ShadowAccel::None) return;
+    if (radial_)
+      throw std::invalid_argument("cube: accel=" + p.getChoice("accel") + " needs storage=depth (storage=radial stores distances, which are not affine in a face's texels)");
+    // The lookup decides only footprints whose rectangle, widened by a texel, lies inside a face.
+    uint32_t footprint = uint32_t(2 * hpsm_.reach + 6);
+    if (footprint > smallest)
+      throw std::invalid_argument("cube: accel needs faces of at least " + std::to_string(footprint) + " texels for filter's footprint; " +
+                                  (fromScreen_ ? "min_resolution" : "resolution") + " is " + std::to_string(smallest));
+  }
 
   // faces_pass=single: one DSV over a cube's six faces, drawn into with the face chosen per instance.
   void ConfigureFacesPass(Device& device, const ParamValues& p) {
@@ -313,6 +359,10 @@ class CubeTechnique final : public Technique {
     sd.ViewDimension = SRV_DIMENSION_TEXTURECUBE;
     sd.TextureCube = {0, 1};
     slot.srv = device.CreateShaderResourceView(slot.cube.get(), &sd);
+    if (hpsm_.accel != ShadowAccel::None) {
+      slot.faceArray = MakeSliceArraySrv(device, slot.cube.get());
+      slot.hpsm = std::make_shared<HpsmMaps>(device, hpsm_, resolution, resolution, 6);
+    }
   }
 
   void RenderSlot(DeviceContext& ctx, SceneDrawer& drawer, const FrameInputs& frame, Slot& slot, const LocalLight& l, const glm::mat4& camera) {
@@ -371,6 +421,7 @@ class CubeTechnique final : public Technique {
   float near_ = 0.05f, texelsPerPixel_ = 1.0f;
   bool radial_ = false, allLights_ = false, fromScreen_ = false, cullFaces_ = true, onePass_ = false;
   int filter_ = 0, kernel_ = 3;
+  HpsmSettings hpsm_;
   float radialBias_ = 0, radialSlope_ = 0;
   PcssSettings pcss_;
   uint32_t slotCount_ = 1, labSlot_ = kMaxCubeSlots;

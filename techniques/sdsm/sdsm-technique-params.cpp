@@ -16,7 +16,8 @@ namespace {
 // (csm/shadow.hlsli), whether the CPU or fit.hlsl wrote them.
 const char* const kSharedCsmParams[] = {"cascades",  "resolution", "blend",      "filter",  "kernel",   "bias",       "depth_bias",
                                         "slope_bias", "normal_offset", "msaa",    "blur",    "bleed",    "exponents",  "precision",
-                                        "anisotropy", "accel",       "hpsm_block", "hpsm_eps", "hpsm_counters", "light_size", "pcss_search", "pcss_max_kernel"};
+                                        "anisotropy", "accel",       "hpsm_block", "hpsm_eps", "hpsm_counters", "hpsm_build", "light_size", "pcss_search",
+                                        "pcss_max_kernel"};
 
 }  // namespace
 

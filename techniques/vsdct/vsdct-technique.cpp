@@ -37,11 +37,16 @@
 
 #include "cube/cube-culling.h"
 #include "cube/cube-faces.h"
+#include "hpsm-maps.h"
 #include "local-lights.h"
 #include <sp/tech/technique.h>
 
 namespace sp::tech {
 namespace {
+
+// Why accel (techniques/hpsm-maps.h) is refused here.
+const char* const kVsdctAccelRefusal =
+    "secondary maps per atlas tile, with the indirection and guard band in the footprint, are not built yet; the cube technique has accel";
 
 const char* const kFilters[] = {"hw2x2", "box", "gauss", "gathercmp", "poisson"};
 
@@ -66,10 +71,12 @@ class VsdctTechnique final : public Technique {
         {ParamSpec::Choice, "resolution_from", "fixed: tiles of `resolution`; screen: each frame's tile from the screen size of the light's range sphere, between min_resolution and resolution (King's smaller tile)", "fixed", 0, 0, {"fixed", "screen"}},
         {ParamSpec::Int, "min_resolution", "resolution_from=screen: the smallest tile (face texels, guard band not included)", "64", 16, 4096, {}},
         {ParamSpec::Float, "texels_per_pixel", "resolution_from=screen: face texels per screen pixel across the light's range sphere", "1.0", 0.01, 100, {}},
+        UnofferedAccelParam(kVsdctAccelRefusal),
     };
   }
 
   void Configure(Device& device, const ParamValues& p) override {
+    RefuseAccel(p, "vsdct", kVsdctAccelRefusal);
     light_ = uint32_t(p.getInt("light"));
     device_ = &device;
     maxResolution_ = uint32_t(p.getInt("resolution"));
