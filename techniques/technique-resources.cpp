@@ -65,7 +65,7 @@ Ref<Buffer> NamedBuffer(Device& device, uint32_t bytes, USAGE usage, uint32_t bi
   d.ByteWidth = bytes;
   d.Usage = usage;
   d.BindFlags = bindFlags;
-  d.CPUAccessFlags = usage == USAGE_DYNAMIC ? CPU_ACCESS_WRITE : 0;
+  d.CPUAccessFlags = usage == USAGE_DYNAMIC ? uint32_t(CPU_ACCESS_WRITE) : 0u;
   Ref<Buffer> b = device.CreateBuffer(d);
   b->SetDebugName(name);
   return b;
