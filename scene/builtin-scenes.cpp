@@ -81,6 +81,8 @@ const Entry kScenes[] = {
     {"furnished-room", proc::MakeFurnishedRoom},
     {"street", proc::MakeStreet},
     {"lattice", proc::MakeLattice},
+    {"stacked-planks", proc::MakeStackedPlanks},
+    {"single-plank", proc::MakeSinglePlank},
 };
 
 }  // namespace

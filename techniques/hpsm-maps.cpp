@@ -41,8 +41,18 @@ std::vector<ParamSpec> HpsmParams() {
       {ParamSpec::Choice, "accel", "skip the filter where a secondary map decides the whole footprint: hybrid min/max plane shadow maps, or the hierarchical min/max baseline", "none", 0, 0, {"none", "hpsm", "minmax"}},
       {ParamSpec::Int, "hpsm_block", "shadow-map texels per secondary texel and axis; 0: 4 for hpsm, the smallest power of two as wide as the filter's footprint for minmax", "0", 0, 256, {}},
       {ParamSpec::Float, "hpsm_eps", "hpsm: the largest depth residual of a block stored as a plane", "1e-6", 0, 0.5, {}},
+      {ParamSpec::Choice, "hpsm_build", "how the build reads the shadow map into groupshared memory: GatherRed (4 texels a fetch) or Load (1); the maps are the same", "gather", 0, 0, {"gather", "load"}},
       {ParamSpec::Int, "hpsm_counters", "1: the lit pass counts its decisions for the lab (one atomic add per lookup); 0: no counting", "1", 0, 1, {}},
   };
+}
+
+ParamSpec UnofferedAccelParam(const std::string& why) {
+  return {ParamSpec::Choice, "accel", "not offered (" + why + "): only none", "none", 0, 0, {"none", "hpsm", "minmax"}};
+}
+
+void RefuseAccel(const ParamValues& p, const std::string& technique, const std::string& why) {
+  const std::string& a = p.getChoice("accel");
+  if (a != "none") throw std::invalid_argument(technique + ": accel=" + a + " is not offered: " + why);
 }
 
 HpsmSettings ReadHpsmSettings(const ParamValues& p, int filter, int kernel, uint32_t resolution) {
@@ -53,6 +63,7 @@ HpsmSettings ReadHpsmSettings(const ParamValues& p, int filter, int kernel, uint
   if (filter == 5) s.pcssMaxKernel = kernel;
   s.eps = p.getFloat("hpsm_eps");
   s.counters = p.getInt("hpsm_counters") != 0;
+  s.gatherBuild = p.getChoice("hpsm_build") == "gather";
   int footprint = 2 * s.reach + 2;
   int block = p.getInt("hpsm_block");
   if (s.accel == ShadowAccel::MinMax) {
@@ -98,7 +109,13 @@ HpsmMaps::HpsmMaps(Device& device, const HpsmSettings& s, uint32_t width, uint32
   ud.ViewDimension = UAV_DIMENSION_TEXTURE2DARRAY;
   ud.Texture2DArray = {0, 0, layers};
   uav_ = device.CreateUnorderedAccessView(texture_.get(), &ud);
-  build_ = device.CreateComputeShader(CompileTechniqueShader("common/hpsm-build.hlsl", "cs_5_0", "main"));
+  build_ = device.CreateComputeShader(CompileTechniqueShader("common/hpsm-build.hlsl", "cs_5_0", "main", {{"HPSM_BUILD_GATHER", s.gatherBuild ? "1" : "0"}}));
+  if (s.gatherBuild) {
+    SAMPLER_DESC pd;
+    pd.Filter = FILTER_MIN_MAG_MIP_POINT;
+    pd.AddressU = pd.AddressV = pd.AddressW = TEXTURE_ADDRESS_CLAMP;
+    point_ = device.CreateSamplerState(pd);
+  }
   constants_ = MakeConstantBuffer(device, sizeof(BuildConstants), "hpsm build constants");
   counters_ = MakeRawBuffer(device, kCounterBytes, BIND_UNORDERED_ACCESS, "hpsm decision counters");
   countersUav_ = MakeRawUav(device, counters_.get());
@@ -122,6 +139,7 @@ void HpsmMaps::Build(DeviceContext& ctx, ShaderResourceView* depth) {
   ctx.CSSetConstantBuffers(0, {constants_.get()});
   ctx.CSSetShaderResources(0, {depth});
   ctx.CSSetUnorderedAccessViews(0, {uav_.get()});
+  if (point_) ctx.CSSetSamplers(0, {point_.get()});
   ctx.Dispatch((blocksX_ + 7) / 8, (blocksY_ + 7) / 8, layers_);
   UnorderedAccessView* noUav = nullptr;
   ShaderResourceView* noSrv = nullptr;

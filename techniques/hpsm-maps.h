@@ -22,10 +22,16 @@ struct HpsmSettings {
   float eps = 0.0f;  // hpsm: the largest plane residual, in depth units
   bool counters = true;  // the lit pass counts its decisions (HpsmCounterSource)
   int pcssMaxKernel = 0;  // filter=pcss: the pcss_max_kernel the reach was derived from (HPSM_PCSS_MAX_KERNEL)
+  bool gatherBuild = true;  // hpsm_build: the build fills its tile with GatherRed (false: Load)
 };
 
-// The parameters: accel, hpsm_block, hpsm_eps, hpsm_counters.
+// The parameters: accel, hpsm_block, hpsm_eps, hpsm_counters, hpsm_build.
 std::vector<ParamSpec> HpsmParams();
+// For techniques that do not offer acceleration: an `accel` parameter whose only working value is
+// none, so that asking for it is refused by RefuseAccel with the technique's reason instead of as
+// an unknown parameter.
+ParamSpec UnofferedAccelParam(const std::string& why);
+void RefuseAccel(const ParamValues& p, const std::string& technique, const std::string& why);
 // Reads them for a technique filtering with (filter, kernel; pcss: pcss_max_kernel) a map of `resolution` texels;
 // throws std::invalid_argument naming the parameter for values that cannot work.
 HpsmSettings ReadHpsmSettings(const ParamValues& p, int filter, int kernel, uint32_t resolution);
@@ -59,6 +65,7 @@ class HpsmMaps {
   Ref<ShaderResourceView> srv_;
   Ref<UnorderedAccessView> uav_;
   Ref<ComputeShader> build_;
+  Ref<SamplerState> point_;  // hpsm_build=gather
   Ref<Buffer> constants_, counters_, countersStaging_;
   Ref<UnorderedAccessView> countersUav_;
 };

@@ -58,6 +58,10 @@ PcssConstants OrthoPcssConstants(const PcssSettings& s, float nearZ, float farZ,
   return c;
 }
 
+glm::vec4 CascadePcssRow(const PcssSettings& s) {
+  return glm::vec4(2.0f * std::tan(0.5f * glm::radians(s.lightSize)), float(s.searchTaps), float(s.maxKernel), 0.0f);
+}
+
 PcssConstants PerspectivePcssConstants(const PcssSettings& s, float nearZ, float farZ, float fovY, float mapSize) {
   PcssConstants c;
   c.depthRange = {nearZ, farZ};

@@ -46,6 +46,9 @@ static_assert(sizeof(PcssConstants) == 32);
 
 // An orthographic map: light size in degrees, one texel's width and height in world units.
 PcssConstants OrthoPcssConstants(const PcssSettings& s, float nearZ, float farZ, glm::vec2 worldTexel);
+// csm/shadow.hlsli's csmPcss (csm and sdsm): 2 tan(angle / 2), search taps, max kernel, 0. The
+// cascades' depth ranges and texel sizes differ, so the shader derives the rest per cascade.
+glm::vec4 CascadePcssRow(const PcssSettings& s);
 // A perspective map: light radius in world units, vertical field of view in radians, map size.
 PcssConstants PerspectivePcssConstants(const PcssSettings& s, float nearZ, float farZ, float fovY, float mapSize);
 

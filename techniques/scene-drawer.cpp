@@ -28,16 +28,7 @@ struct ObjectConstants {
 };
 static_assert(sizeof(ObjectConstants) == 80);
 
-Ref<Buffer> DynamicConstants(Device& device, uint32_t size, const char* name) {
-  BUFFER_DESC d;
-  d.ByteWidth = size;
-  d.Usage = USAGE_DYNAMIC;
-  d.BindFlags = BIND_CONSTANT_BUFFER;
-  d.CPUAccessFlags = CPU_ACCESS_WRITE;
-  Ref<Buffer> b = device.CreateBuffer(d);
-  b->SetDebugName(name);
-  return b;
-}
+Ref<Buffer> DynamicConstants(Device& device, uint32_t size, const char* name) { return MakeDynamicBuffer(device, size, BIND_CONSTANT_BUFFER, name); }
 
 template <class T>
 void Upload(DeviceContext& ctx, Buffer* b, const T& value) {

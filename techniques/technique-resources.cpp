@@ -59,13 +59,25 @@ Ref<SamplerState> MakeShadowComparisonSampler(Device& device) {
   return device.CreateSamplerState(smp);
 }
 
-Ref<Buffer> MakeConstantBuffer(Device& device, uint32_t bytes, const char* name) {
+namespace {
+Ref<Buffer> NamedBuffer(Device& device, uint32_t bytes, USAGE usage, uint32_t bindFlags, const char* name) {
   BUFFER_DESC d;
   d.ByteWidth = bytes;
-  d.BindFlags = BIND_CONSTANT_BUFFER;
+  d.Usage = usage;
+  d.BindFlags = bindFlags;
+  d.CPUAccessFlags = usage == USAGE_DYNAMIC ? uint32_t(CPU_ACCESS_WRITE) : 0u;
   Ref<Buffer> b = device.CreateBuffer(d);
   b->SetDebugName(name);
   return b;
+}
+}  // namespace
+
+Ref<Buffer> MakeConstantBuffer(Device& device, uint32_t bytes, const char* name) {
+  return NamedBuffer(device, bytes, USAGE_DEFAULT, BIND_CONSTANT_BUFFER, name);
+}
+
+Ref<Buffer> MakeDynamicBuffer(Device& device, uint32_t bytes, uint32_t bindFlags, const char* name) {
+  return NamedBuffer(device, bytes, USAGE_DYNAMIC, bindFlags, name);
 }
 
 Ref<Buffer> MakeRawBuffer(Device& device, uint32_t bytes, uint32_t bindFlags, const char* name, uint32_t extraMiscFlags) {

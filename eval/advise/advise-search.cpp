@@ -185,7 +185,10 @@ SearchResult Search(const SearchOptions& o, const std::function<void(const std::
   scene::Scene sc = scene::LoadScene(o.scene, scene::SceneOptions{});
   if (sc.name.empty()) sc.name = fs::path(o.scene).stem().string();
   if (sc.cameraPaths.empty()) sc.cameraPaths = scene::CameraPathsFor(sc);
-  const scene::CameraPath& path = sc.cameraPath(o.path);  // throws listing the scene's paths
+  const scene::CameraPath& path = sc.cameraPathOrFile(o.path);  // throws listing the scene's paths; loads a recorded path file
+  if (!sc.useRecordedLight(path)) say(o.path + ": the recorded light turns along the path; the runs keep the first key's direction");
+  // A recorded file can be recorded again under the same name: its contents key the cache.
+  const std::string pathContents = scene::IsCameraPathFile(o.path) ? Hex(HashFile(14695981039346656037ull, o.path)) : "";
 
   SearchResult res;
   res.cacheDir = o.cache.empty() ? o.out / "cache" : o.cache;
@@ -230,6 +233,7 @@ SearchResult Search(const SearchOptions& o, const std::function<void(const std::
                           {"size", {o.width, o.height}}, {"frames", o.frames}, {"technique", c.technique},
                           {"params", full.all()}, {"revision", res.revision}};
     if (repeat) key["repeat"] = repeat;
+    if (!pathContents.empty()) key["path_contents"] = pathContents;
     std::string k = key.dump();
     if (const nlohmann::json* hit = cache.find(k)) {
       ++(repeat ? res.timingRunsFromCache : res.fromCache);

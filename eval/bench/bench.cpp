@@ -134,6 +134,7 @@ void ValidateBenchOptions(const BenchOptions& o) {
   if (o.techniques.empty()) throw std::invalid_argument("no technique given");
   if (o.backends.empty()) throw std::invalid_argument("no backend given");
   if (o.frames < 1) throw std::invalid_argument("--frames must be at least 1");
+  if (scene::IsCameraPathFile(o.path)) scene::LoadCameraPath(o.path);  // a malformed recording fails before anything runs
   for (const std::string& text : o.techniques) {
     TechniqueSpec t = ParseTechniqueSpec(text);
     std::unique_ptr<tech::Technique> technique = tech::CreateTechnique(t.name);  // throws listing the names
@@ -153,6 +154,8 @@ nlohmann::json RunToJson(const RunResult& r, const std::map<std::string, std::st
       {"false_lit_pct", Round(r.accuracy.falseLitPct(), 1e4)},
       {"false_shadow_pct", Round(r.accuracy.falseShadowPct(), 1e4)},
       {"mean_abs_error", Round(r.accuracy.meanAbsError(), 1e6)},
+      {"penumbra_mean_abs_error", Round(r.accuracy.penumbraMeanAbsError(), 1e6)},
+      {"penumbra_pixels", r.accuracy.penumbra},
       {"texels_per_pixel_median", r.texelsPerPixelMedian},
       {"texels_per_pixel_p05", r.texelsPerPixelP05},
       {"max_aliasing_error", r.maxAliasingError},
@@ -283,7 +286,10 @@ nlohmann::json RunBench(const BenchOptions& o, const Progress& progress) {
     scene::Scene sc = scene::LoadScene(name, so);
     if (sc.name.empty()) sc.name = fs::path(name).stem().string();
     if (sc.cameraPaths.empty()) sc.cameraPaths = scene::CameraPathsFor(sc);
-    sc.cameraPath(o.path);  // throws listing the scene's paths
+    // Throws listing the scene's paths; a recorded path file (the viewer's) is added to the scene.
+    const scene::CameraPath& path = sc.cameraPathOrFile(o.path);
+    if (!sc.useRecordedLight(path) && progress)
+      progress(o.path + ": the recorded light turns along the path; the run keeps the first key's direction");
     if (o.lightSize) SetLightSize(sc, *o.lightSize);
     if (o.lightGammas.empty()) {
       scenes.push_back(std::move(sc));

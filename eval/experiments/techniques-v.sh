@@ -8,7 +8,9 @@
 #  3. the flat-receiver claim: planes against min/max on large floors under low suns;
 #  4. hpsm_eps and hpsm_block sweeps;
 #  5. PCSS against the area-light reference (--light-size) next to fixed kernels and hw2x2, on the
-#     default scene and on overlapping occluders at different depths.
+#     default scene and on overlapping occluders at different depths; the penumbra-only error on
+#     stacked-planks (a high plank crossing over a low one: PCSS's one average blocker depth) against
+#     single-plank (the low plank alone): part "5b".
 #   eval/experiments/techniques-v.sh [OUT_DIR] [WxH] [FRAMES]
 # PARTS="1 3" runs only those parts (default: all); SCENES, TECHS, KERNELS (filter=... suffixes) and
 # SUNS (pcss light_size values) override part 1's lists, e.g. for a quick run.
@@ -20,13 +22,18 @@ ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 OUT="${1:-$ROOT/out/techniques-v}"
 SIZE="${2:-640x360}"
 FRAMES="${3:-8}"
-PARTS="${PARTS:-1 3 4 5}"
+PARTS="${PARTS:-1 3 4 5 5b}"
 SCENES="${SCENES:-default,terrain-city,grazing-light}"
 part() { [[ " $PARTS " == *" $1 "* ]]; }
 SP="$ROOT/shadowport"
 mkdir -p "$OUT"
-# The caller's options first: the CLI takes an option's first value, so a --frames given here wins.
-bench() { local name="$1"; shift; "$SP" bench "$@" --backend both --size "$SIZE" --frames "$FRAMES" --out "$OUT/$name.json"; }
+# The CLI refuses an option given twice: a --frames among the caller's options replaces FRAMES.
+bench() {
+  local name="$1"; shift
+  local frames=(--frames "$FRAMES")
+  [[ " $* " == *" --frames "* ]] && frames=()
+  "$SP" bench "$@" --backend both --size "$SIZE" "${frames[@]}" --out "$OUT/$name.json"
+}
 # Like bench, but a refusal (bad combination, exit status != 0 before any run) is kept as a note
 # instead of stopping the script.
 try_bench() {
@@ -92,5 +99,10 @@ if part 5; then
     try_bench "pcss-rp-sun$s" --light-size "$s" --scene default,overlapping-occluders --technique "$rp"
   done
 fi
+# 5b. Two blocker depths over one penumbra (3-degree sun, 2 frames): the same techniques on the
+#     two planks and on the low plank alone; compare their penumbra MAE. pcss_max_kernel 31 too:
+#     the high plank's penumbra is wider than the default 15 texels allow.
+part 5b && try_bench "pcss-planks-sun3" --frames 2 --light-size 3 --scene stacked-planks,single-plank \
+  --technique basic:filter=pcss,csm:bias=receiver-plane:filter=pcss,csm:bias=receiver-plane:filter=pcss:pcss_max_kernel=31,csm:bias=receiver-plane:filter=gathercmp:kernel=15,csm:bias=receiver-plane:filter=hw2x2
 
 /usr/bin/python3 "$ROOT/eval/experiments/techniques_v_tables.py" "$OUT"

@@ -46,7 +46,8 @@ def filter_label(r):
     p = r["params"]
     f = p.get("filter", "hw2x2")
     if f == "pcss":
-        return f"pcss {p.get('light_size')} deg"
+        mk = p.get("pcss_max_kernel", "15")
+        return f"pcss {p.get('light_size')} deg" + ("" if mk == "15" else f" max kernel {mk}")
     return f if f == "hw2x2" else f"{f} {p.get('kernel')}"
 
 
@@ -165,13 +166,14 @@ def pcss_table(out):
     if not names:
         return
     print("\n**PCSS against the area-light reference** (256 reference rays per pixel; MAE = mean |visibility - "
-          "reference| over receiving pixels; accuracy columns Vulkan, checked on GL)\n")
-    header(["sun (deg)", "scene", "technique", "bias", "filter", "MAE", "misclassified %", "false lit %", "false shadow %",
-            "lit ms Vulkan / GL", "MAE on GL"])
+          "reference| over receiving pixels; penumbra MAE = the same over the pixels whose reference is strictly "
+          "between 0 and 1, with their count; accuracy columns Vulkan, checked on GL)\n")
+    header(["sun (deg)", "scene", "technique", "bias", "filter", "MAE", "penumbra MAE (pixels)", "misclassified %", "false lit %",
+            "false shadow %", "lit ms Vulkan / GL", "MAE on GL"])
     for name in names:
         why = refused(out, name)
         if why:
-            row([name, "all", "", "", "", "refused: " + why] + [""] * 5)
+            row([name, "all", "", "", "", "refused: " + why] + [""] * 6)
             continue
         groups = {}
         for r in runs(out, name):
@@ -181,7 +183,8 @@ def pcss_table(out):
             r = vk or gl
             m = r["metrics"]
             bias = r["params"].get("bias", "slope " + r["params"].get("slope_bias", ""))
-            row([f"{r['checks'].get('light_size', 0):.2f}", key[0], key[1], bias, filter_label(r), f"{m['mean_abs_error']:.4f}",
+            pen = f"{m['penumbra_mean_abs_error']:.4f} ({m['penumbra_pixels']})" if "penumbra_pixels" in m else "-"
+            row([f"{r['checks'].get('light_size', 0):.2f}", key[0], key[1], bias, filter_label(r), f"{m['mean_abs_error']:.4f}", pen,
                  f"{m['misclassified_pct']:.3f}", f"{m['false_lit_pct']:.3f}", f"{m['false_shadow_pct']:.3f}",
                  f"{m['gpu_ms'].get('lit', 0):.1f} / {gl['metrics']['gpu_ms'].get('lit', 0):.1f}" if gl else "-",
                  f"{gl['metrics']['mean_abs_error']:.4f}" if gl else "-"])

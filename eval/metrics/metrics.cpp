@@ -13,6 +13,8 @@ void Accuracy::add(const Accuracy& o) {
   falseLit += o.falseLit;
   falseShadow += o.falseShadow;
   absErrorSum += o.absErrorSum;
+  penumbra += o.penumbra;
+  penumbraAbsErrorSum += o.penumbraAbsErrorSum;
 }
 
 namespace {
@@ -23,6 +25,10 @@ void Judge(Accuracy& a, float v, float ref) {
   if (lit && !refLit) ++a.falseLit;
   if (!lit && refLit) ++a.falseShadow;
   a.absErrorSum += std::abs(double(v) - double(ref));
+  if (ref > 0.0f && ref < 1.0f) {
+    ++a.penumbra;
+    a.penumbraAbsErrorSum += std::abs(double(v) - double(ref));
+  }
 }
 
 }  // namespace

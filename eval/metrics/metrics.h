@@ -27,12 +27,18 @@ struct Accuracy {
   uint64_t falseLit = 0;     // lit although the reference is shadowed: leaks, peter-panning
   uint64_t falseShadow = 0;  // shadowed although the reference is lit: acne, over-darkening
   double absErrorSum = 0;    // sum of |visibility - reference|: meanAbsError, "mean_abs_error" in results
+  // The same over the penumbra alone: pixels whose reference is strictly between 0 and 1 (an area
+  // light's partial visibility), so a wrong penumbra width is not averaged away by the umbra and
+  // the lit area ("penumbra_mean_abs_error", "penumbra_pixels"). None with a hard reference.
+  uint64_t penumbra = 0;
+  double penumbraAbsErrorSum = 0;
 
   void add(const Accuracy& o);
   double misclassifiedPct() const { return Pct(falseLit + falseShadow); }
   double falseLitPct() const { return Pct(falseLit); }
   double falseShadowPct() const { return Pct(falseShadow); }
   double meanAbsError() const { return receiving ? absErrorSum / double(receiving) : 0.0; }
+  double penumbraMeanAbsError() const { return penumbra ? penumbraAbsErrorSum / double(penumbra) : 0.0; }
 
  private:
   double Pct(uint64_t n) const { return receiving ? 100.0 * double(n) / double(receiving) : 0.0; }

@@ -99,6 +99,8 @@ Scene MakeDuelingFrusta(uint64_t budget);
 Scene MakeGrazingLight(uint64_t budget);
 Scene MakeContact(uint64_t budget);
 Scene MakeOverlappingOccluders(uint64_t budget);
+Scene MakeStackedPlanks(uint64_t budget);
+Scene MakeSinglePlank(uint64_t budget);
 Scene MakeDistantOccluder(uint64_t budget);
 Scene MakePointLightRoom(uint64_t budget);
 Scene MakeCubeSeam(uint64_t budget);

@@ -2,7 +2,9 @@
 // Texture2DArray: one thread per secondary texel. Neighbouring texels' supports overlap (by 2R + 1
 // texels), so a group of 8 x 8 first loads the union of its supports into groupshared memory,
 // each texel once, and its threads read their supports from there; a union wider than
-// kHpsmTile (large blocks or kernels) is read from the map directly.
+// kHpsmTile (large blocks or kernels) is read from the map directly. HPSM_BUILD_GATHER 1 fills
+// the tile with GatherRed, four texels per fetch (issue 15's construction); 0 with one Load per
+// texel. Both store the same floats: Gather returns texels unfiltered.
 //
 // A plane is fitted by least squares over the support (on a regular grid the slopes decouple:
 // a = sum(d (x - cx)) / sum((x - cx)^2)), and kept when its largest residual over the
@@ -23,6 +25,12 @@ cbuffer HpsmBuild : register(b0) {
 };
 
 Texture2DArray<float> depthMap : register(t0);
+#ifndef HPSM_BUILD_GATHER
+#define HPSM_BUILD_GATHER 0
+#endif
+#if HPSM_BUILD_GATHER
+SamplerState depthPoint : register(s0);  // clamp; Gather ignores the filter
+#endif
 RWTexture2DArray<float4> hpsmOut : register(u0);
 
 #define kHpsmGroup 8
@@ -50,10 +58,29 @@ float Depth(int x, int y) {
   tileShared = int(block) * kHpsmGroup + before + after <= kHpsmTile;
   if (tileShared) {
     int2 extent = int2(ux.y - ux.x + 1, uy.y - uy.x + 1);
+#if HPSM_BUILD_GATHER
+    // Quad q covers texels tileOrigin + 2q + {0, 1}^2: Gather at the corner they share returns
+    // (i0, j1), (i1, j1), (i1, j0), (i0, j0) with i0 = floor(u W - 1/2) (cross-api-facts.md), so
+    // u = (x + 1) / W gives i0 = x exactly. A quad past the map's last row or column reads a
+    // clamped texel that lies outside the extent and is not stored.
+    int2 quads = (extent + 1) / 2;
+    float2 invSize = 1.0 / float2(mapSize);
+    for (int t = int(local.y * kHpsmGroup + local.x); t < quads.x * quads.y; t += kHpsmGroup * kHpsmGroup) {
+      int2 p = 2 * int2(t % quads.x, t / quads.x);
+      float4 g = depthMap.GatherRed(depthPoint, float3(float2(tileOrigin + p + 1) * invSize, float(layer)));
+      int i = p.y * kHpsmTile + p.x;
+      bool right = p.x + 1 < extent.x, below = p.y + 1 < extent.y;
+      tile[i] = g.w;
+      if (right) tile[i + 1] = g.z;
+      if (below) tile[i + kHpsmTile] = g.x;
+      if (right && below) tile[i + kHpsmTile + 1] = g.y;
+    }
+#else
     for (int t = int(local.y * kHpsmGroup + local.x); t < extent.x * extent.y; t += kHpsmGroup * kHpsmGroup) {
       int2 p = int2(t % extent.x, t / extent.x);
       tile[p.y * kHpsmTile + p.x] = depthMap.Load(int4(tileOrigin + p, layer, 0));
     }
+#endif
   }
   GroupMemoryBarrierWithGroupSync();
   uint2 blocks = (mapSize + block - 1) / block;

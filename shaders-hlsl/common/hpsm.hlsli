@@ -109,6 +109,17 @@ float2 HpsmPlaneOrigin(int2 sx, int2 sy) { return float2(sx.x + sx.y, sy.x + sy.
 #error the min/max baseline level must be at least as wide as the footprint (2 HPSM_REACH + 2)
 #endif
 
+#if SHADOW_ACCEL == 2
+// Min and max depth over texels [t0, t1] of a layer from the min/max level, whose texels are at
+// least as wide as the footprint (2R + 2 <= HPSM_BLOCK): the footprint spans at most 2 x 2 of them.
+float2 HpsmMinMaxOver(Texture2DArray<float4> hpsm, int2 t0, int2 t1, int layer) {
+  int2 b0 = t0 / HPSM_BLOCK, b1 = t1 / HPSM_BLOCK;
+  float2 m00 = hpsm.Load(int4(b0.x, b0.y, layer, 0)).xy, m10 = hpsm.Load(int4(b1.x, b0.y, layer, 0)).xy;
+  float2 m01 = hpsm.Load(int4(b0.x, b1.y, layer, 0)).xy, m11 = hpsm.Load(int4(b1.x, b1.y, layer, 0)).xy;
+  return float2(min(min(m00.x, m10.x), min(m01.x, m11.x)), max(max(m00.y, m10.y), max(m01.y, m11.y)));
+}
+#endif
+
 // Which decision the secondary map makes for lookup i (kHpsm*).
 uint HpsmDecide(Texture2DArray<float4> hpsm, ShadowFilterInput i) {
   ShadowFilterFrame f = ShadowFilterSetup(i);
@@ -128,14 +139,9 @@ uint HpsmDecide(Texture2DArray<float4> hpsm, ShadowFilterInput i) {
   float refSlack = tilted ? kHpsmRounding * (abs(f.reference) + dot(abs(G), abs(m - f.s) + e)) : 0.0;
   float refLo = refCentre - refExtent - refSlack, refHi = refCentre + refExtent + refSlack;
 #if SHADOW_ACCEL == 2
-  // The level whose texels are at least as wide as the footprint (2R + 2 <= HPSM_BLOCK): the
-  // footprint spans at most 2 x 2 of them.
-  int2 b0 = t0 / HPSM_BLOCK, b1 = t1 / HPSM_BLOCK;
-  float2 m00 = hpsm.Load(int4(b0.x, b0.y, layer, 0)).xy, m10 = hpsm.Load(int4(b1.x, b0.y, layer, 0)).xy;
-  float2 m01 = hpsm.Load(int4(b0.x, b1.y, layer, 0)).xy, m11 = hpsm.Load(int4(b1.x, b1.y, layer, 0)).xy;
-  float lo = min(min(m00.x, m10.x), min(m01.x, m11.x)), hi = max(max(m00.y, m10.y), max(m01.y, m11.y));
-  if (refHi <= lo) return kHpsmLitMinMax;
-  if (refLo > hi) return kHpsmShadowedMinMax;
+  float2 range = HpsmMinMaxOver(hpsm, t0, t1, layer);
+  if (refHi <= range.x) return kHpsmLitMinMax;
+  if (refLo > range.y) return kHpsmShadowedMinMax;
   return kHpsmFiltered;
 #else
   int2 mapSize = int2(round(1.0 / i.texelSize));

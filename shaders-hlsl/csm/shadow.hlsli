@@ -34,7 +34,8 @@ cbuffer CsmShadow : register(b2) {
   float4 csmSettings;                         // select (0 interval, 1 map), blend, bias (0 const, 1 slope, 2 normal, 3 receiver plane), normal offset (texels)
   float4 csmMapInfo;                          // 1 / texture size (xy), unused, region size in texels
 #if SHADOW_FILTER == 5 && !CSM_MOMENTS
-  // Only here: sdsm writes the members above byte for byte from the GPU and offers no pcss.
+  // Declared for pcss only; csm and sdsm (whose fit.hlsl writes this cbuffer on the GPU) always
+  // provide it. One row for all cascades: each derives its texel size and depth range below.
   float4 csmPcss;                             // 2 tan(light angle / 2), search taps, max kernel, unused
 #endif
 };
@@ -180,11 +181,14 @@ float CsmFiltered(int c, float3 lv, float3 lvDdx, float3 lvDdy, float3 worldNorm
   fi.pixel = pixel;
 #if SHADOW_FILTER == 5
   // Each cascade is its own orthographic map: its depth range from the depth mapping
-  // (d = z * scale + offset, z the distance along the light), its own world texel size.
+  // (d = z * scale + offset, z the distance along the light), its own world texel size per axis
+  // from the same mapping (uv per world unit times the texture's texels per uv): sdsm's tight
+  // partitions and csm's stabilize=0 fits have oblong texels, which csmCascade's larger side
+  // would make a narrower penumbra along the shorter one.
   ShadowPcssInput pi;
   float depthScale = csmToMapScale[c].z, depthOffset = csmToMapOffset[c].z;
   pi.depthRange = float2(depthOffset, depthOffset - 1.0) / depthScale;
-  pi.penumbraScale = csmPcss.xx / csmCascade[c].z;
+  pi.penumbraScale = csmPcss.x * abs(csmToMapScale[c].xy) / csmMapInfo.xy;
   pi.perspective = 0.0;
   pi.searchTaps = csmPcss.y;
   pi.maxKernel = csmPcss.z;

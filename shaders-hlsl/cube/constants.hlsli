@@ -22,6 +22,7 @@ cbuffer CubeShadow : register(b2) {
   uint cubeLabSlot;         // the slot of the light the lab judges; SP_CUBE_MAX_SLOTS for none
   float2 padCubeShadow;
   CubeSlot cubeSlots[SP_CUBE_MAX_SLOTS];
+  float4 cubePcss;  // filter=pcss: the light sphere's radius (world units), search taps, max kernel, unused
 };
 
 #endif

@@ -22,7 +22,10 @@
 #define SP_CUBE_SLOTS 1
 #endif
 #if SHADOW_FILTER == 3 || SHADOW_FILTER == 4
-#error SHADOW_FILTER of the cube technique must be 0 (hw2x2), 1 (box) or 2 (gauss)
+#error SHADOW_FILTER of the cube technique must be 0 (hw2x2), 1 (box), 2 (gauss) or 5 (pcss)
+#endif
+#if SHADOW_FILTER == 5 && SP_CUBE_RADIAL
+#error filter=pcss of the cube technique needs storage=depth
 #endif
 
 // Unused slots' textures are never read and drop out of the compiled shader.
@@ -104,6 +107,10 @@ void CubeFaceAxes(float3 d, out float3 S, out float3 T) {
   else { S = float3(0, 0, 1); T = float3(0, 1, 0); }
 }
 
+#if SHADOW_FILTER == 5
+#include "cube/pcss.hlsli"
+#endif
+
 float CubeSlotVisibility(TextureCube<float> map, CubeSlot slot, float3 worldPos, float3 worldNormal) {
   float3 d = worldPos - slot.lightPos;
   float z = slot.depthA + slot.depthB / CubeMajorAxis(d);
@@ -122,6 +129,8 @@ float CubeSlotVisibility(TextureCube<float> map, CubeSlot slot, float3 worldPos,
 #endif
 #if SHADOW_FILTER == 0
   return CubeTap(map, slot, d, 1.0, radialBias, z);
+#elif SHADOW_FILTER == 5
+  return CubePcssVisibility(map, slot, d, worldNormal);
 #else
   float3 S, T;
   CubeFaceAxes(d, S, T);
@@ -151,9 +160,16 @@ float CubeSlotVisibility(TextureCube<float> map, CubeSlot slot, float3 worldPos,
 }
 
 // Slot k, when it shadows `light`, decides; a light without a slot is unshadowed.
+#if defined(SHADOW_ACCEL) && SHADOW_ACCEL != 0
+#include "cube/hpsm.hlsli"
+#define SP_CUBE_SLOT(k)                                                                   \
+  if (k < SP_CUBE_SLOTS && cubeSlots[k].light == light)                                  \
+    return CubeSlotVisibilityAccel(CubeShadowMap##k, CubeHpsm##k, cubeSlots[k], worldPos, worldNormal);
+#else
 #define SP_CUBE_SLOT(k)                                                                   \
   if (k < SP_CUBE_SLOTS && cubeSlots[k].light == light)                                  \
     return CubeSlotVisibility(CubeShadowMap##k, cubeSlots[k], worldPos, worldNormal);
+#endif
 
 #define SP_LOCAL_SHADOWS 1
 float LocalShadowVisibility(uint light, float3 worldPos, float3 worldNormal) {

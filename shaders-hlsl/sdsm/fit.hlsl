@@ -1,10 +1,11 @@
 // SDSM with cull=gpu: the partitions' shadow projections made on the GPU from the analysis
 // results, so no frame waits for a readback. One thread per partition writes, into one raw buffer:
 //   bytes    0..383   the fitted boxes in the results layout (SDSM_W_BOUNDS), for CasterCuller
-//   bytes  384..1007  cbuffer CsmShadow of csm/shadow.hlsli, byte for byte; the technique copies
-//                     this range into the lit pass's constant buffer (CopySubresourceRegion)
-//   bytes 1008..1519  per partition the world -> clip matrix as four rows (VSCasterGpu)
-//   bytes 1520..1583  the moment blur's radius per layer in texels (16 floats, as cbuffer
+//   bytes  384..1023  cbuffer CsmShadow of csm/shadow.hlsli, byte for byte, csmPcss included
+//                     (the shader declares it for filter=pcss only); the technique copies this
+//                     range into the lit pass's constant buffer (CopySubresourceRegion)
+//   bytes 1024..1535  per partition the world -> clip matrix as four rows (VSCasterGpu)
+//   bytes 1536..1599  the moment blur's radius per layer in texels (16 floats, as cbuffer
 //                     MomentBlur's blurRadius of moments/blur.hlsl holds them; copied there)
 // The arithmetic is FitPartition's (techniques/sdsm/sdsm-technique-fit.cpp) operation for
 // operation; `precise` keeps the compiler from fusing it into multiply-adds the CPU does not do.
@@ -13,8 +14,8 @@
 #include "sdsm/analysis.hlsli"
 
 #define SDSM_FIT_CONSTANTS 384
-#define SDSM_FIT_MATRICES 1008
-#define SDSM_FIT_BLUR 1520
+#define SDSM_FIT_MATRICES 1024
+#define SDSM_FIT_BLUR 1536
 #define SDSM_FIT_BLUR_LAYERS 16  // kMaxMomentLayers
 
 cbuffer SdsmFit : register(b0) {
@@ -26,6 +27,7 @@ cbuffer SdsmFit : register(b0) {
   float4 fitSettings;       // csmSettings: select, blend, bias mode, normal offset
   float4 fitParams;         // resolution, padding texels, dilation, tight (0 or 1)
   float4 fitBlur;           // moment blur radius (world); its padding limit, the blur's radius limit (texels); 0
+  float4 fitPcss;           // xyz: csmPcss (one row for every partition: each derives its own scale); w: FitParams::casterTop
 };
 
 ByteAddressBuffer analysis : register(t0);
@@ -45,6 +47,7 @@ void StoreRow(uint address, float4 v) { fitOut.Store4(address, asuint(v)); }
 #define CSM_FORWARD (SDSM_FIT_CONSTANTS + 576)
 #define CSM_SETTINGS (SDSM_FIT_CONSTANTS + 592)
 #define CSM_MAP_INFO (SDSM_FIT_CONSTANTS + 608)
+#define CSM_PCSS (SDSM_FIT_CONSTANTS + 624)
 
 void WriteEmpty(uint p) {
   uint b = (SDSM_W_BOUNDS + p * 8) * 4;
@@ -68,6 +71,7 @@ void FitPartitions(uint p : SV_GroupThreadID) {
     StoreRow(CSM_FORWARD, fitCameraForward);
     StoreRow(CSM_SETTINGS, fitSettings);
     StoreRow(CSM_MAP_INFO, float4(1.0 / N, 1.0 / N, 0.0, N));
+    StoreRow(CSM_PCSS, float4(fitPcss.xyz, 0.0));
     for (uint l = SDSM_MAX_PARTITIONS; l < SDSM_FIT_BLUR_LAYERS; ++l) fitOut.Store(SDSM_FIT_BLUR + l * 4, asuint(0.0));
   }
   if (p >= K) {
@@ -125,6 +129,7 @@ void FitPartitions(uint p : SV_GroupThreadID) {
   precise float zPad = pad * texel + 1e-4 * (abs(lo.z) + abs(hi.z)) + 1e-4;
   lo.z = lo.z - zPad;
   hi.z = hi.z + zPad;
+  hi.z = max(hi.z, fitPcss.w);
 
   precise float3 extent = hi - lo;
   precise float3 scale = float3(1.0 / extent.x, -1.0 / extent.y, -1.0 / extent.z);

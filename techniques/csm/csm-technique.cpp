@@ -141,8 +141,7 @@ void CsmTechnique::WriteConstants(DeviceContext& ctx, const FrameInputs& frame) 
   k.cameraForward = glm::vec4(frame.camera.forward(), float(fit_.cascades.size()));
   k.settings = glm::vec4(settings_.select == Select::Map ? 1.0f : 0.0f, settings_.fit.blend, float(int(settings_.bias)), settings_.normalOffset);
   k.mapInfo = glm::vec4(1.0f / w, 1.0f / h, 0.0f, n);
-  const PcssSettings& p = settings_.pcss;
-  k.pcss = glm::vec4(2.0f * std::tan(0.5f * glm::radians(p.lightSize)), float(p.searchTaps), float(p.maxKernel), 0.0f);
+  k.pcss = CascadePcssRow(settings_.pcss);
   ctx.UpdateSubresource(constants_.get(), 0, nullptr, &k, 0, 0);
 }
 

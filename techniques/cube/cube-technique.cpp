@@ -17,11 +17,18 @@
 // R32_FLOAT cube of light-to-caster distance (rendered with a D32 depth buffer per face), compared
 // in the shader on 2x2 Gathers with bilinear weights and a receiver slope bias (no rasterizer
 // bias reaches a colour target).
+//
+// accel (techniques/hpsm-maps.h): every face of every slot's cube is a layer of the slot's
+// secondary maps, built from a 2D-array view of the cube; a face is a perspective map, so a
+// receiver plane's planar z is affine in its texels (the plane case as for spot), and the lit pass
+// decides footprints that lie inside one face first (shaders-hlsl/cube/hpsm.hlsli).
 #include <algorithm>
+#include <memory>
 #include <stdexcept>
 
 #include "cube/cube-culling.h"
 #include "cube/cube-faces.h"
+#include "hpsm-maps.h"
 #include "local-lights.h"
 #include "pcf-params.h"
 #include <sp/tech/technique.h>
@@ -32,12 +39,12 @@ namespace {
 // Cube maps one frame may hold (t0..t7 of the lighting include).
 constexpr uint32_t kMaxCubeSlots = 8;
 
-class CubeTechnique final : public Technique {
+class CubeTechnique final : public Technique, public HpsmCounterSource {
  public:
   std::string Name() const override { return "cube"; }
 
   std::vector<ParamSpec> Params() const override {
-    return {
+    std::vector<ParamSpec> specs = {
         {ParamSpec::Int, "light", "the point light shadowed (lights=one) or judged by the lab (lights=all): index into the scene's point lights = local light index", "0", 0, kMaxLocalLights - 1, {}},
         {ParamSpec::Int, "resolution", "width and height of each cube face in texels (resolution_from=screen: the largest)", "512", 16, 8192, {}},
         {ParamSpec::Float, "near", "near plane of every face, in world units (casters closer to the light are not drawn)", "0.05", 1e-4, 1e3, {}},
@@ -47,7 +54,8 @@ class CubeTechnique final : public Technique {
         {ParamSpec::Float, "radial_bias", "storage=radial: constant bias in world units", "0.01", 0, 1e3, {}},
         {ParamSpec::Int, "cull_faces", "1: skip the faces whose frustum (widened by the filter's reach) meets neither the camera's nor a visible receiver", "1", 0, 1, {}},
         {ParamSpec::Float, "radial_slope_bias", "storage=radial: bias in texel footprints times tan(angle to the light), at most 10", "1.5", 0, 100, {}},
-        {ParamSpec::Choice, "filter", "comparison filter: the hardware's seamless 2x2, or box/gauss kernels whose taps cross face edges", "hw2x2", 0, 0, {"hw2x2", "box", "gauss"}},
+        {ParamSpec::Choice, "filter", "comparison filter: the hardware's seamless 2x2, box/gauss kernels whose taps cross face edges, or pcss "
+                                      "(the light as a sphere of radius light_size; storage=depth)", "hw2x2", 0, 0, {"hw2x2", "box", "gauss", "pcss"}},
         PcfKernelParam("box, gauss"),
         {ParamSpec::Choice, "lights", "one: the point light `light`; all: up to max_lights point lights, those lighting visible receivers, largest on screen first", "one", 0, 0, {"one", "all"}},
         {ParamSpec::Int, "max_lights", "lights=all: most point lights shadowed per frame (the rest stay unshadowed)", "8", 1, kMaxCubeSlots, {}},
@@ -56,6 +64,9 @@ class CubeTechnique final : public Technique {
         {ParamSpec::Float, "texels_per_pixel", "resolution_from=screen: face texels per screen pixel across the light's range sphere", "1.0", 0.01, 100, {}},
         {ParamSpec::Choice, "faces_pass", "per_face: one pass per face; single: one instanced pass into all six faces, the vertex shader choosing the face (storage=depth, needs the device capability vsRenderTargetArrayIndex)", "per_face", 0, 0, {"per_face", "single"}},
     };
+    for (const ParamSpec& p : PcssParamSpecs(PcssLight::Local)) specs.push_back(p);
+    for (ParamSpec& h : HpsmParams()) specs.push_back(h);
+    return specs;
   }
 
   void Configure(Device& device, const ParamValues& p) override {
@@ -68,9 +79,13 @@ class CubeTechnique final : public Technique {
     radialSlope_ = p.getFloat("radial_slope_bias");
     cullFaces_ = p.getInt("cull_faces") != 0;
     const std::string& filter = p.getChoice("filter");
-    filter_ = filter == "hw2x2" ? 0 : filter == "box" ? 1 : 2;
+    filter_ = PcfFilterIndex(filter);
     kernel_ = std::stoi(p.getChoice("kernel"));
     CheckPcfKernel("cube", filter_, kernel_);
+    pcss_ = PcssSettingsFrom(p);
+    // The search reads the stored depths, which storage=radial keeps as distances compared in the
+    // shader on Gathers: its own box would be needed; not offered.
+    if (filter_ == kPcssFilter && radial_) throw std::invalid_argument("cube: filter=pcss needs storage=depth (storage=radial has no PCSS path)");
     allLights_ = p.getChoice("lights") == "all";
     slotCount_ = allLights_ ? uint32_t(p.getInt("max_lights")) : 1;
     fromScreen_ = p.getChoice("resolution_from") == "screen";
@@ -79,6 +94,7 @@ class CubeTechnique final : public Technique {
     if (fromScreen_ && minResolution_ > resolution_)
       throw std::invalid_argument("cube: min_resolution=" + std::to_string(minResolution_) + " is above resolution=" + std::to_string(resolution_));
     slots_.assign(slotCount_, {});
+    ConfigureAccel(p);
 
     if (radial_) {
       radialVs_ = device.CreateVertexShader(CompileTechniqueShader("cube/radial.hlsl", "vs_5_0", "VSMain"));
@@ -100,6 +116,13 @@ class CubeTechnique final : public Technique {
     smp.AddressU = smp.AddressV = smp.AddressW = TEXTURE_ADDRESS_CLAMP;
     smp.ComparisonFunc = radial_ ? COMPARISON_NEVER : COMPARISON_LESS_EQUAL;
     sampler_ = device.CreateSamplerState(smp);
+    pointSampler_ = nullptr;
+    if (filter_ == kPcssFilter) {
+      SAMPLER_DESC ps;
+      ps.Filter = FILTER_MIN_MAG_MIP_POINT;
+      ps.AddressU = ps.AddressV = ps.AddressW = TEXTURE_ADDRESS_CLAMP;
+      pointSampler_ = device.CreateSamplerState(ps);
+    }
     constants_ = MakeConstantBuffer(device, sizeof(Constants), "CubeShadow constants");
     ConfigureFacesPass(device, p);
   }
@@ -119,6 +142,7 @@ class CubeTechnique final : public Technique {
     c.radialBias = radialBias_;
     c.radialSlope = radialSlope_;
     c.labSlot = kMaxCubeSlots;  // none, unless the judged light has a map this frame
+    c.pcss = glm::vec4(pcss_.lightSize, float(pcss_.searchTaps), float(pcss_.maxKernel), 0.0f);
     for (auto& slot : c.slots) slot.light = ~0u;
 
     ShaderResourceView* none = nullptr;
@@ -144,14 +168,21 @@ class CubeTechnique final : public Technique {
     }
     ctx.UpdateSubresource(constants_.get(), 0, nullptr, &c, 0, 0);
     labSlot_ = c.labSlot;
+    if (hpsm_.accel != ShadowAccel::None) {
+      ctx.OMSetRenderTargets(0, nullptr, nullptr);
+      GpuTimer::Scope built(frame.timer, ctx, "hpsm");
+      for (uint32_t k = 0; k < slotCount_ && k < chosen.size(); ++k) slots_[k].hpsm->Build(ctx, slots_[k].faceArray.get());
+    }
   }
 
   std::string LightingInclude() const override { return "cube/shadow.hlsli"; }
   std::vector<hlsl::Define> LightingDefines() const override {
-    return {{"SP_CUBE_RADIAL", radial_ ? "1" : "0"},
+    std::vector<hlsl::Define> d = {{"SP_CUBE_RADIAL", radial_ ? "1" : "0"},
             {"SP_CUBE_SLOTS", std::to_string(slotCount_)},
             {"SHADOW_FILTER", std::to_string(filter_)},
-            {"SHADOW_KERNEL", std::to_string(kernel_)}};
+            {"SHADOW_KERNEL", std::to_string(filter_ == kPcssFilter ? 3 : kernel_)}};
+    for (hlsl::Define& h : HpsmDefines(hpsm_)) d.push_back(h);
+    return d;
   }
 
   void BindLighting(DeviceContext& ctx) override {
@@ -159,13 +190,22 @@ class CubeTechnique final : public Technique {
     ShaderResourceView* srvs[kMaxCubeSlots] = {};
     for (uint32_t k = 0; k < slotCount_; ++k) srvs[k] = slots_[k].light == ~0u ? nullptr : slots_[k].srv.get();
     ctx.PSSetShaderResources(0, slotCount_, srvs);
-    ctx.PSSetSamplers(0, {sampler_.get()});
+    ctx.PSSetSamplers(0, {sampler_.get(), pointSampler_.get()});
+    if (hpsm_.accel != ShadowAccel::None) {
+      // t8 + k: CubeHpsm<k>; every slot counts into slot 0's counters (slot 0 is filled first).
+      for (uint32_t k = 0; k < slotCount_; ++k) srvs[k] = slots_[k].light == ~0u ? nullptr : slots_[k].hpsm->srv();
+      ctx.PSSetShaderResources(kMaxCubeSlots, slotCount_, srvs);
+      if (slots_[0].hpsm) slots_[0].hpsm->BindCounters(ctx);
+    }
+  }
+  HpsmCounts HpsmDecisions() const override {
+    return slots_.empty() || !slots_[0].hpsm ? HpsmCounts{} : slots_[0].hpsm->ReadCounters(*device_->GetImmediateContext());
   }
 
   // Every cube held, and with storage=radial the depth buffers of their passes.
   ShadowStats Stats() const override {
     uint64_t bytes = 0;
-    for (const Slot& slot : slots_) bytes += uint64_t(slot.resolution) * slot.resolution * 4 * (radial_ ? 7 : 6);
+    for (const Slot& slot : slots_) bytes += uint64_t(slot.resolution) * slot.resolution * 4 * (radial_ ? 7 : 6) + (slot.hpsm ? slot.hpsm->memoryBytes() : 0);
     return {bytes, trianglesSubmitted_, facesRendered_};
   }
   // The judged light's six faces.
@@ -184,7 +224,28 @@ class CubeTechnique final : public Technique {
     std::vector<Ref<RenderTargetView>> faceRtvs;
     Ref<ShaderResourceView> srv;
     Ref<DepthStencilView> allFaces;  // faces_pass=single
+    Ref<ShaderResourceView> faceArray;  // accel: the six faces as a Texture2DArray, the build's input
+    std::shared_ptr<HpsmMaps> hpsm;     // accel: one layer per face
   };
+
+  // accel: storage=depth only (radial distance is not affine in a face's texels), and a block no
+  // wider than the smallest face the slots may get.
+  void ConfigureAccel(const ParamValues& p) {
+    uint32_t smallest = fromScreen_ ? minResolution_ : resolution_;
+    // cube's PCSS searches and filters in direction space across face edges (shadow-pcss-cube):
+    // its reach in a face's texels is not the 2D bound hpsm.hlsli derives.
+    if (filter_ == kPcssFilter && p.getChoice("accel") != "none")
+      throw std::invalid_argument("cube: accel=" + p.getChoice("accel") + " is not offered with filter=pcss (its search and box run in direction space across face edges, not in one face's texels)");
+    hpsm_ = ReadHpsmSettings(p, filter_, kernel_, smallest);
+    if (hpsm_.accel == ShadowAccel::None) return;
+    if (radial_)
+      throw std::invalid_argument("cube: accel=" + p.getChoice("accel") + " needs storage=depth (storage=radial stores distances, which are not affine in a face's texels)");
+    // The lookup decides only footprints whose rectangle, widened by a texel, lies inside a face.
+    uint32_t footprint = uint32_t(2 * hpsm_.reach + 6);
+    if (footprint > smallest)
+      throw std::invalid_argument("cube: accel needs faces of at least " + std::to_string(footprint) + " texels for filter's footprint; " +
+                                  (fromScreen_ ? "min_resolution" : "resolution") + " is " + std::to_string(smallest));
+  }
 
   // faces_pass=single: one DSV over a cube's six faces, drawn into with the face chosen per instance.
   void ConfigureFacesPass(Device& device, const ParamValues& p) {
@@ -298,6 +359,10 @@ class CubeTechnique final : public Technique {
     sd.ViewDimension = SRV_DIMENSION_TEXTURECUBE;
     sd.TextureCube = {0, 1};
     slot.srv = device.CreateShaderResourceView(slot.cube.get(), &sd);
+    if (hpsm_.accel != ShadowAccel::None) {
+      slot.faceArray = MakeSliceArraySrv(device, slot.cube.get());
+      slot.hpsm = std::make_shared<HpsmMaps>(device, hpsm_, resolution, resolution, 6);
+    }
   }
 
   void RenderSlot(DeviceContext& ctx, SceneDrawer& drawer, const FrameInputs& frame, Slot& slot, const LocalLight& l, const glm::mat4& camera) {
@@ -305,7 +370,9 @@ class CubeTechnique final : public Technique {
     VIEWPORT vp{0, 0, float(slot.resolution), float(slot.resolution), 0, 1};
     ctx.RSSetViewports(1, &vp);
     // The lookup reads past a face's edge: the 2x2 filter one texel, a kernel its half width more.
-    const float widen = 1.0f + 2.0f * float(2 + (filter_ ? kernel_ / 2 : 0)) / float(slot.resolution);
+    // pcss: search and box stay within pcss_max_kernel / 2 texels.
+    const int reach = filter_ == kPcssFilter ? pcss_.maxKernel / 2 + 1 : filter_ ? kernel_ / 2 : 0;
+    const float widen = 1.0f + 2.0f * float(2 + reach) / float(slot.resolution);
     if (slot.allFaces) return RenderSlotInOnePass(ctx, drawer, frame, slot, l, camera, widen);
     for (int f = 0; f < 6; ++f) {
       glm::mat4 viewProj = cube::FaceViewProj(f, l.position, near_, l.range);
@@ -345,22 +412,25 @@ class CubeTechnique final : public Technique {
     uint32_t labSlot;
     float pad[2];
     SlotConstants slots[kMaxCubeSlots];
+    glm::vec4 pcss;  // filter=pcss: radius, search taps, max kernel, unused
   };
-  static_assert(sizeof(SlotConstants) == 32 && sizeof(Constants) == 32 + 32 * kMaxCubeSlots);
+  static_assert(sizeof(SlotConstants) == 32 && sizeof(Constants) == 48 + 32 * kMaxCubeSlots);
 
   Device* device_ = nullptr;
   uint32_t light_ = 0, resolution_ = 0, minResolution_ = 64;
   float near_ = 0.05f, texelsPerPixel_ = 1.0f;
   bool radial_ = false, allLights_ = false, fromScreen_ = false, cullFaces_ = true, onePass_ = false;
   int filter_ = 0, kernel_ = 3;
+  HpsmSettings hpsm_;
   float radialBias_ = 0, radialSlope_ = 0;
+  PcssSettings pcss_;
   uint32_t slotCount_ = 1, labSlot_ = kMaxCubeSlots;
   std::vector<Slot> slots_;
   std::vector<uint32_t> visible_;
   Ref<VertexShader> radialVs_;
   Ref<PixelShader> radialPs_;
   Ref<RasterizerState> rasterizer_;
-  Ref<SamplerState> sampler_;
+  Ref<SamplerState> sampler_, pointSampler_;  // pointSampler_: filter=pcss's blocker search (s1)
   Ref<Buffer> constants_;
   uint64_t trianglesSubmitted_ = 0;
   uint32_t facesRendered_ = 0;

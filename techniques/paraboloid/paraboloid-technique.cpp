@@ -8,12 +8,17 @@
 // rasterizer depth bias as in cube. The directional light is unshadowed.
 #include <stdexcept>
 
+#include "hpsm-maps.h"
 #include "local-lights.h"
 #include "paraboloid/paraboloid-map.h"
 #include <sp/tech/technique.h>
 
 namespace sp::tech {
 namespace {
+
+// Why accel (techniques/hpsm-maps.h) is refused here.
+const char* const kParaboloidAccelRefusal =
+    "a paraboloid map is not a projective view, so a receiver plane is no plane in its texels, and its only filter is the one-fetch hardware 2x2";
 
 // How far past the rim each hemisphere is drawn, in texels: the 2x2 filter reads one texel
 // beyond a receiver's own, and one more absorbs the rasterizer's edge rule.
@@ -33,10 +38,12 @@ class ParaboloidTechnique final : public Technique {
         {ParamSpec::Float, "slope_bias", "D3D11 SlopeScaledDepthBias (depth=exact: the shader applies it to the depth it writes)", "2.0", -100, 100, {}},
         {ParamSpec::Choice, "depth", "vertex: depth interpolated from the vertices (the classic method); exact: the pixel shader writes the distance to the triangle's plane along the texel's direction", "vertex", 0, 0, {"vertex", "exact"}},
         {ParamSpec::Float, "exact_bias", "depth=exact: world units added to the distance written (no rasterizer bias reaches a written depth)", "0.01", 0, 1e3, {}},
+        UnofferedAccelParam(kParaboloidAccelRefusal),
     };
   }
 
   void Configure(Device& device, const ParamValues& p) override {
+    RefuseAccel(p, "paraboloid", kParaboloidAccelRefusal);
     light_ = uint32_t(p.getInt("light"));
     resolution_ = uint32_t(p.getInt("resolution"));
     near_ = p.getFloat("near");

@@ -81,6 +81,7 @@ PartitionFit FitPartition(const LightBounds& bounds, float splitNear, float spli
   float zPad = pad * texel + 1e-4f * (std::abs(lo.z) + std::abs(hi.z)) + 1e-4f;
   lo.z = lo.z - zPad;
   hi.z = hi.z + zPad;
+  hi.z = std::max(hi.z, p.casterTop);
 
   glm::vec3 extent = hi - lo;
   f.min = lo;
@@ -105,7 +106,7 @@ PartitionFit FitPartition(const LightBounds& bounds, float splitNear, float spli
 }
 
 CsmShadowConstants MakeConstants(const std::vector<PartitionFit>& fits, const glm::mat4& lightView, const glm::vec3& cameraForward,
-                                 const glm::vec4& settings, uint32_t resolution) {
+                                 const glm::vec4& settings, uint32_t resolution, const glm::vec4& pcss) {
   CsmShadowConstants k{};
   const float N = float(resolution);
   k.lightView = lightView;
@@ -125,6 +126,7 @@ CsmShadowConstants MakeConstants(const std::vector<PartitionFit>& fits, const gl
   k.cameraForward = glm::vec4(cameraForward, float(fits.size()));
   k.settings = settings;
   k.mapInfo = glm::vec4(1.0f / N, 1.0f / N, 0.0f, N);
+  k.pcss = pcss;
   return k;
 }
 

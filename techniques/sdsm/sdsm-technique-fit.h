@@ -12,7 +12,8 @@
 //     (the light frame keeps its axes) the texel grid stays put and sizes change in octave steps
 //     only, the paper's option for temporal stability;
 //  4. z: pad by the same texels (the normal offset moves lookups below the lowest receiver) and a
-//     relative epsilon; casters above the box are pancaked (DepthClipEnable = FALSE).
+//     relative epsilon; casters above the box are pancaked (DepthClipEnable = FALSE), except with
+//     filter=pcss, where the top is raised to casterTop so blockers keep their depths.
 #pragma once
 #include <glm/glm.hpp>
 #include <vector>
@@ -26,7 +27,7 @@ namespace sp::tech::sdsm {
 // the CsmShadow constants, each partition's world -> clip matrix as four rows, and the moment
 // blur's radius per layer (texels, one float each, kMaxMomentLayers of them: the radius block of
 // MomentMaps' blur constants, which ConvertWithGpuRadii copies from here).
-constexpr uint32_t kFitConstantsOffset = 384, kFitMatricesOffset = 1008, kFitBlurOffset = 1520, kFitBytes = 1584;
+constexpr uint32_t kFitConstantsOffset = 384, kFitMatricesOffset = 1024, kFitBlurOffset = 1536, kFitBytes = 1600;
 
 // cbuffer CsmShadow of shaders-hlsl/csm/shadow.hlsli (D3D packing).
 struct CsmShadowConstants {
@@ -38,8 +39,12 @@ struct CsmShadowConstants {
   glm::vec4 cameraForward;   // w: partition count
   glm::vec4 settings;        // select (0: interval), blend, bias mode, normal offset (texels)
   glm::vec4 mapInfo;         // 1 / N, 1 / N, 0, N
+  // filter=pcss: 2 tan(angle / 2), search taps, max kernel, unused. Always present (the shader
+  // declares it for pcss only): every partition derives its own texel size and depth range from
+  // its toMapScale/toMapOffset, so this row is the same for all and the fit writes it as given.
+  glm::vec4 pcss;
 };
-static_assert(sizeof(CsmShadowConstants) == 624);
+static_assert(sizeof(CsmShadowConstants) == 640);
 static_assert(kFitMatricesOffset - kFitConstantsOffset == sizeof(CsmShadowConstants));
 static_assert(kFitBlurOffset - kFitMatricesOffset == kMaxPartitions * 64);
 
@@ -51,6 +56,10 @@ struct FitParams {
   glm::vec3 gridOrigin{0.0f};  // the world origin in the light view: quantize's grid anchor
   float blurWorld = 0.0f;      // moment blur radius (world); padded for in texels of each partition
   uint32_t blurMaxTexels = 0;
+  // filter=pcss: the light-view z every box's top is raised to (the scene's top). A tight box holds
+  // receivers only and pancakes the casters above it onto its near plane, where PCSS would read a
+  // blocker depth just above the receiver: no penumbra. -3e38 leaves the boxes as fitted.
+  float casterTop = -3.0e38f;
 };
 
 struct PartitionFit {
@@ -86,7 +95,7 @@ PartitionFit FitPartition(const LightBounds& bounds, float splitNear, float spli
 // The lighting's constants for a set of fits (K = fits.size(); the last one's split far should
 // already reach past every receiver). settings: csmSettings.
 CsmShadowConstants MakeConstants(const std::vector<PartitionFit>& fits, const glm::mat4& lightView, const glm::vec3& cameraForward,
-                                 const glm::vec4& settings, uint32_t resolution);
+                                 const glm::vec4& settings, uint32_t resolution, const glm::vec4& pcss);
 
 // The fits a fit buffer holds (kFitBytes / 4 words), K partitions.
 std::vector<PartitionFit> DecodeFitBuffer(const std::vector<uint32_t>& words, uint32_t partitions);

@@ -11,10 +11,13 @@ namespace {
 // csm parameters sdsm shares. Not: split, lambda, splits (the analysis places the splits), fit,
 // focus, stabilize (the partitions are fitted to the samples; quantize is sdsm's stability
 // option), select (interval: the splits are where the samples are), storage (array). accel: the
-// secondary maps are built per partition from the slices as csm builds them per cascade.
+// secondary maps are built per partition from the slices as csm builds them per cascade. PCSS:
+// each partition's texel size and depth range come from its own fitted scale and offset
+// (csm/shadow.hlsli), whether the CPU or fit.hlsl wrote them.
 const char* const kSharedCsmParams[] = {"cascades",  "resolution", "blend",      "filter",  "kernel",   "bias",       "depth_bias",
                                         "slope_bias", "normal_offset", "msaa",    "blur",    "bleed",    "exponents",  "precision",
-                                        "anisotropy", "accel",       "hpsm_block", "hpsm_eps", "hpsm_counters"};
+                                        "anisotropy", "accel",       "hpsm_block", "hpsm_eps", "hpsm_counters", "hpsm_build", "light_size", "pcss_search",
+                                        "pcss_max_kernel"};
 
 }  // namespace
 
@@ -50,8 +53,6 @@ SdsmSettings SdsmSettingsFrom(const ParamValues& p) {
   for (const char* name : kSharedCsmParams)
     if (p.all().count(name)) shared[name] = p.all().at(name);
   s.csm = csm::SettingsFrom(ParamValues::Parse("sdsm", csm::CsmParams(), shared), "sdsm");
-  // The partitions' constants are written on the GPU (fit.hlsl) without pcss's.
-  if (s.csm.filter == kPcssFilter) throw std::invalid_argument("sdsm: filter=pcss is not offered (use basic or csm)");
   s.partition = ParsePartitionScheme(p.getChoice("partition"));
   s.tight = p.getInt("tight") != 0;
   const std::string& cull = p.getChoice("cull");

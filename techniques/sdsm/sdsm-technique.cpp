@@ -17,8 +17,9 @@ struct FitConstants {
   glm::vec4 settings;
   glm::vec4 params;
   glm::vec4 blur;
+  glm::vec4 pcss;  // csmPcss, written into the CsmShadow copy as is
 };
-static_assert(sizeof(FitConstants) == 224);
+static_assert(sizeof(FitConstants) == 240);
 static_assert(kFitBytes - kFitBlurOffset == kMomentBlurRadiiBytes);
 static_assert(kMaxPartitions <= kMaxMomentLayers);
 
@@ -119,6 +120,7 @@ FitParams SdsmTechnique::MakeFitParams(const glm::mat4& lightView) const {
   p.gridOrigin = glm::vec3(lightView[3]);  // the world origin's light-view position
   p.blurWorld = settings_.csm.moments ? settings_.csm.moment.blur : 0.0f;
   p.blurMaxTexels = settings_.csm.fit.padWorldMaxTexels;
+  if (settings_.csm.filter == kPcssFilter && !settings_.csm.moments) p.casterTop = sceneBounds_.transformed(lightView).max.z;
   return p;
 }
 
@@ -182,6 +184,7 @@ void SdsmTechnique::DepthPrepass(DeviceContext& ctx, SceneDrawer& drawer, const 
 void SdsmTechnique::RenderShadows(DeviceContext& ctx, SceneDrawer& drawer, const FrameInputs& frame) {
   const scene::Camera& cam = frame.camera;
   glm::mat4 lightView = MakeLightView(cam.position, cam.forward(), cam.up, frame.light.direction);
+  sceneBounds_ = frame.scene->bounds;
   // The maps are read by the previous frame's lit pass; unbind them before writing.
   ShaderResourceView* none[2] = {};
   ctx.PSSetShaderResources(0, 2, none);
@@ -229,7 +232,7 @@ void SdsmTechnique::RenderShadows(DeviceContext& ctx, SceneDrawer& drawer, const
         unionCull = true;
       }
     }
-    CsmShadowConstants k = MakeConstants(fits_, lightView_, cam.forward(), LightingSettings(), n_);
+    CsmShadowConstants k = MakeConstants(fits_, lightView_, cam.forward(), LightingSettings(), n_, CascadePcssRow(settings_.csm.pcss));
     ctx.UpdateSubresource(constants_.get(), 0, nullptr, &k, 0, 0);
     DrawCpu(ctx, drawer, frame, unionCull);
   }
@@ -256,6 +259,7 @@ void SdsmTechnique::RunGpuFit(DeviceContext& ctx, const FrameInputs& frame) {
     c.settings = LightingSettings();
     c.params = glm::vec4(float(n_), float(fp.padTexels), fp.dilation, settings_.tight ? 1.0f : 0.0f);
     c.blur = glm::vec4(fp.blurWorld, float(fp.blurMaxTexels), kMaxBlurRadiusTexels, 0.0f);
+    c.pcss = glm::vec4(glm::vec3(CascadePcssRow(settings_.csm.pcss)), fp.casterTop);
     ctx.UpdateSubresource(fitConstants_.get(), 0, nullptr, &c, 0, 0);
     ctx.VSSetShaderResources(2, {nullptr});  // last frame's draws read the matrices there
     ctx.CSSetConstantBuffers(0, {fitConstants_.get()});

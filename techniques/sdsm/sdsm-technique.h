@@ -151,6 +151,7 @@ class SdsmTechnique final : public Technique, public HpsmCounterSource {
 
   uint64_t frame_ = 0;
   glm::mat4 lightView_{1.0f};
+  scene::Bounds sceneBounds_;  // this frame's scene: filter=pcss raises the partitions' tops to it (FitParams::casterTop)
   std::vector<PartitionFit> fits_;
   std::vector<uint64_t> partitionTriangles_;
   mutable uint64_t gpuTriangles_ = 0;

@@ -37,11 +37,16 @@
 
 #include "cube/cube-culling.h"
 #include "cube/cube-faces.h"
+#include "hpsm-maps.h"
 #include "local-lights.h"
 #include <sp/tech/technique.h>
 
 namespace sp::tech {
 namespace {
+
+// Why accel (techniques/hpsm-maps.h) is refused here.
+const char* const kVsdctAccelRefusal =
+    "secondary maps per atlas tile, with the indirection and guard band in the footprint, are not built yet; the cube technique has accel";
 
 const char* const kFilters[] = {"hw2x2", "box", "gauss", "gathercmp", "poisson"};
 
@@ -56,7 +61,7 @@ class VsdctTechnique final : public Technique {
         {ParamSpec::Float, "near", "near plane of every face, in world units (casters closer to the light are not drawn)", "0.05", 1e-4, 1e3, {}},
         {ParamSpec::Int, "depth_bias", "D3D11 DepthBias (units of the depth format)", "200", -1e7, 1e7, {}},
         {ParamSpec::Float, "slope_bias", "D3D11 SlopeScaledDepthBias", "2.0", -100, 100, {}},
-        {ParamSpec::Choice, "filter", "shadow filter (common/shadow-filter.hlsli)", "hw2x2", 0, 0, {"hw2x2", "box", "gauss", "gathercmp", "poisson"}},
+        {ParamSpec::Choice, "filter", "shadow filter (common/shadow-filter.hlsli)", "hw2x2", 0, 0, {"hw2x2", "box", "gauss", "gathercmp", "poisson", "pcss"}},
         PcfKernelParam("box, gauss, gathercmp, poisson"),
         {ParamSpec::Int, "guard", "guard band around each tile in texels, at least the filter's reach (hw2x2: 1, others: kernel/2 + 1); 0: clamp taps into the face instead",
          "5", 0, 64, {}},
@@ -66,10 +71,12 @@ class VsdctTechnique final : public Technique {
         {ParamSpec::Choice, "resolution_from", "fixed: tiles of `resolution`; screen: each frame's tile from the screen size of the light's range sphere, between min_resolution and resolution (King's smaller tile)", "fixed", 0, 0, {"fixed", "screen"}},
         {ParamSpec::Int, "min_resolution", "resolution_from=screen: the smallest tile (face texels, guard band not included)", "64", 16, 4096, {}},
         {ParamSpec::Float, "texels_per_pixel", "resolution_from=screen: face texels per screen pixel across the light's range sphere", "1.0", 0.01, 100, {}},
+        UnofferedAccelParam(kVsdctAccelRefusal),
     };
   }
 
   void Configure(Device& device, const ParamValues& p) override {
+    RefuseAccel(p, "vsdct", kVsdctAccelRefusal);
     light_ = uint32_t(p.getInt("light"));
     device_ = &device;
     maxResolution_ = uint32_t(p.getInt("resolution"));
@@ -81,6 +88,12 @@ class VsdctTechnique final : public Technique {
     near_ = p.getFloat("near");
     guard_ = uint32_t(p.getInt("guard"));
     cullFaces_ = p.getInt("cull_faces") != 0;
+    // PCSS reads a footprint chosen per pixel, up to pcss_max_kernel wide, by point loads and a box in
+    // one face's texels; vsdct's faces are atlas tiles of different resolutions whose guard bands
+    // are sized for a fixed kernel, and its lookup through the indirection has no such path yet.
+    if (p.getChoice("filter") == "pcss")
+      throw std::invalid_argument("vsdct: filter=pcss is not offered: the faces are atlas tiles of their own resolutions with guard bands sized "
+                                  "for a fixed kernel, and the indirect lookup has no PCSS path (use cube)");
     for (int i = 0; i < 5; ++i)
       if (p.getChoice("filter") == kFilters[i]) filter_ = i;
     kernel_ = p.getInt("kernel");

@@ -47,7 +47,8 @@ std::vector<ParamSpec> WarpTechniqueParams(Warp warp) {
       // lights of the singular-configuration tests (docs/techniques.md).
       {P::Float, "linear_slope_bias", "depth=linear: slope-scaled bias, times the linear depth's largest change per map texel (D3D11's slope term, applied in the depth shader)",
        "1.0", -100, 100, {}},
-      {P::Choice, "filter", "comparison filter (common/shadow-filter.hlsli)", "hw2x2", 0, 0, {"hw2x2", "box", "gauss", "gathercmp", "poisson"}},
+      {P::Choice, "filter", "comparison filter (common/shadow-filter.hlsli; pcss is refused: the warped texel size is not uniform)", "hw2x2", 0, 0,
+       {"hw2x2", "box", "gauss", "gathercmp", "poisson", "pcss"}},
       PcfKernelParam("box, gauss, gathercmp, poisson"),
       {P::Int, "receiver_plane", "1: receiver-plane depth bias per filter tap, from the derivatives of the warped map coordinates", "0", 0, 1, {}},
   };
@@ -81,6 +82,11 @@ WarpSettings WarpSettingsFrom(Warp warp, const ParamValues& p) {
   s.linearBias = p.getFloat("linear_bias");
   s.linearSlopeBias = p.getFloat("linear_slope_bias");
   const std::string& filter = p.getChoice("filter");
+  // PCSS turns a penumbra in world units into texels with one scale per map (or per cascade); the
+  // perspective warp's texels grow and shrink across the map, so no such scale exists.
+  if (filter == "pcss")
+    throw std::invalid_argument(std::string(WarpName(warp)) + ": filter=pcss is not offered: the warped map's texel size is not uniform (it changes across the map with "
+                                "the perspective warp), so PCSS's penumbra has no single width in texels (use basic, csm or sdsm)");
   const char* const filters[] = {"hw2x2", "box", "gauss", "gathercmp", "poisson"};
   for (int i = 0; i < 5; ++i)
     if (filter == filters[i]) s.filter = i;

@@ -54,6 +54,13 @@ TEST(LabMetrics, MeanAbsoluteErrorAgainstAFractionalReference) {
   EXPECT_EQ(a.falseLit, 1u);     // pixel 3: 0.5 against 0.25
   EXPECT_EQ(a.falseShadow, 1u);  // pixel 5: 0.375 against 0.625
   EXPECT_DOUBLE_EQ(a.meanAbsError(), (0.0 + 0.25 + 0.0 + 0.25 + 0.25 + 0.25) / 6);
+  // The penumbra alone: judged pixels whose reference is strictly between 0 and 1 (1, 2, 3, 5).
+  EXPECT_EQ(a.penumbra, 4u);
+  EXPECT_DOUBLE_EQ(a.penumbraMeanAbsError(), (0.25 + 0.0 + 0.25 + 0.25) / 4);
+  eval::Accuracy twice = a;
+  twice.add(a);
+  EXPECT_EQ(twice.penumbra, 8u);
+  EXPECT_DOUBLE_EQ(twice.penumbraMeanAbsError(), a.penumbraMeanAbsError());
 
   // A reference of 0/1 bytes judges exactly as the same values in float.
   std::vector<uint8_t> bytes = {1, 1, 0, 0, 0, 1, 1};
@@ -62,6 +69,8 @@ TEST(LabMetrics, MeanAbsoluteErrorAgainstAFractionalReference) {
   EXPECT_EQ(x.falseLit, y.falseLit);
   EXPECT_EQ(x.falseShadow, y.falseShadow);
   EXPECT_EQ(x.absErrorSum, y.absErrorSum);
+  EXPECT_EQ(x.penumbra, 0u) << "a hard reference has no penumbra";
+  EXPECT_EQ(x.penumbraMeanAbsError(), 0.0);
 
   // The reference picture shades with the fraction: half the sun is between none and all of it.
   scene::DirectionalLight sun;

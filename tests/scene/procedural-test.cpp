@@ -30,7 +30,7 @@ using scene::Scene;
 const std::vector<std::string> kNames = {"default",          "terrain-city",          "canyon-city",      "dueling-frusta",  "grazing-light",
                                          "contact",          "overlapping-occluders", "distant-occluder", "point-light-room",
                                          "cube-seam",        "paraboloid-coarse",     "paraboloid-fine",  "furnished-room",
-                                         "street",           "lattice"};
+                                         "street",           "lattice",               "stacked-planks",   "single-plank"};
 
 bool Finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 

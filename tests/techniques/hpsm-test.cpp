@@ -11,6 +11,7 @@
 // exactly 1 or 0, gathercmp's float weights to 1 within a few ulps. A tap whose coordinate the
 // sampler rounds onto a texel outside the footprint would give it a weight of that rounding's size;
 // the maps here are powers of two, so coordinates are exact. kExact is that float-rounding bound.
+#include <cstring>
 #include <glm/glm.hpp>
 #include <random>
 
@@ -48,9 +49,10 @@ const DepthMapData& TheMap() {
   return m;
 }
 
-tech::HpsmSettings Settings(tech::ShadowAccel accel, int filter, int kernel, int block = 0, float eps = 1e-6f) {
+tech::HpsmSettings Settings(tech::ShadowAccel accel, int filter, int kernel, int block = 0, float eps = 1e-6f, const char* build = "gather") {
   tech::ParamValues p = tech::ParamValues::Parse("hpsm", tech::HpsmParams(),
-                                                 {{"accel", accel == tech::ShadowAccel::Hpsm ? "hpsm" : "minmax"}, {"hpsm_block", std::to_string(block)}, {"hpsm_eps", std::to_string(eps)}});
+                                                 {{"accel", accel == tech::ShadowAccel::Hpsm ? "hpsm" : "minmax"}, {"hpsm_block", std::to_string(block)},
+                                                  {"hpsm_eps", std::to_string(eps)}, {"hpsm_build", build}});
   return tech::ReadHpsmSettings(p, filter, kernel, kSize);
 }
 
@@ -238,6 +240,30 @@ TEST_P(HpsmTest, SecondaryMapsMatchTheCpuConstruction) {
     }
     EXPECT_GT(minMax, hpsm ? 4 : 10) << "the box's edges and the noise need min/max texels";
     EXPECT_LE(ambiguous, 2);
+  }
+}
+
+// The Gather build's tile against the Load build's: the same texels, so the same floats bit for bit.
+// Supports of 3 + 8 x 4 + 3 (box 5: reach 2 + 3) and of 8 x 4 + 0 (minmax) are odd and even
+// extents, and the last group's union is cut by the map's edge; block 16 bypasses the tile.
+TEST_P(HpsmTest, GatherAndLoadBuildsAreBitIdentical) {
+  struct Case {
+    tech::ShadowAccel accel;
+    int filter, kernel, block;
+  };
+  for (Case k : {Case{tech::ShadowAccel::Hpsm, kBox, 3, 0}, Case{tech::ShadowAccel::Hpsm, kBox, 5, 0}, Case{tech::ShadowAccel::Hpsm, kPoisson, 9, 2},
+                 Case{tech::ShadowAccel::Hpsm, kPcss, 15, 4}, Case{tech::ShadowAccel::MinMax, kBox, 3, 0}, Case{tech::ShadowAccel::Hpsm, kBox, 3, 16}}) {
+    std::vector<glm::vec4> gathered = Texels(*Build(Settings(k.accel, k.filter, k.kernel, k.block, 1e-6f, "gather")));
+    std::vector<glm::vec4> loaded = Texels(*Build(Settings(k.accel, k.filter, k.kernel, k.block, 1e-6f, "load")));
+    ASSERT_EQ(gathered.size(), loaded.size());
+    size_t differing = 0, first = gathered.size();
+    for (size_t i = 0; i < gathered.size(); ++i)
+      if (std::memcmp(&gathered[i], &loaded[i], sizeof(glm::vec4)) != 0) {
+        ++differing;
+        first = std::min(first, i);
+      }
+    EXPECT_EQ(differing, 0u) << "filter " << k.filter << " kernel " << k.kernel << " block " << k.block << ": " << differing << " of " << gathered.size()
+                             << " texels differ, first at " << first;
   }
 }
 
@@ -483,6 +509,7 @@ TEST_P(HpsmTest, BadParametersAreRefusedNamingTheParameter) {
   expectError({{"accel", "minmax"}, {"hpsm_block", "6"}}, "hpsm_block");
   expectError({{"accel", "hpsm"}, {"hpsm_eps", "-0.1"}}, "hpsm_eps");
   expectError({{"accel", "hpsm"}, {"hpsm_eps", "x"}}, "hpsm_eps");
+  expectError({{"accel", "hpsm"}, {"hpsm_build", "texelfetch"}}, "hpsm_build");
   EXPECT_NO_THROW(configure({{"accel", "minmax"}, {"filter", "box"}, {"kernel", "5"}, {"hpsm_block", "8"}}));
   // csm: the same parameters, and no accel for moment filters.
   auto csm = [&](std::map<std::string, std::string> p, const std::string& param, const std::string& technique = "csm") {

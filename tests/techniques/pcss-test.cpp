@@ -1,4 +1,4 @@
-// PCSS (filter=pcss, shaders-hlsl/common/shadow-pcss.hlsli) in basic and csm (the sun,
+// PCSS (filter=pcss, shaders-hlsl/common/shadow-pcss.hlsli) in basic, csm and sdsm (the sun,
 // orthographic maps) and spot (perspective map): a thin plank at a known height over a floor, its straight edge
 // above x = 0, the camera under the plank looking down. Across the edge the lab's visibility must
 // ramp from 0 to 1 over the penumbra the light's size gives by geometry (computed here on the
@@ -32,8 +32,9 @@ constexpr float kSpotHeight = 4.0f, kSpotOuterDegrees = 30.0f;
 constexpr uint32_t kSize = 128, kResolution = 512;
 
 // Floor [-3, 3]^2 at y = 0; plank x in [-3, 0], z in [-2.5, 2.5], y in [2, 2.02]. Camera at
-// `cameraHeight`, under the plank, looking straight down, image x = world x.
-scene::Scene PlankScene(bool spot, float cameraHeight = 1.0f) {
+// `cameraHeight` over x = cameraX, under the plank or beside it, looking straight down, image
+// x = world x. `point`: a point light there (range 10) besides the sun.
+scene::Scene PlankScene(bool spot, float cameraHeight = 1.0f, const glm::vec3* point = nullptr, float cameraX = 0.0f) {
   scene::Scene s;
   s.name = spot ? "pcss-plank-spot" : "pcss-plank";
   uint32_t plane = s.addMesh(scene::MakePlane(1));
@@ -41,8 +42,8 @@ scene::Scene PlankScene(bool spot, float cameraHeight = 1.0f) {
   s.addInstance(plane, glm::scale(glm::mat4(1.0f), glm::vec3(6, 1, 6)), glm::vec3(0.8f));
   glm::mat4 plank = glm::translate(glm::mat4(1.0f), glm::vec3(-1.5f, kPlankHeight, 0.0f));
   s.addInstance(box, glm::scale(plank, glm::vec3(3.0f, kPlankTop - kPlankBottom, 5.0f)), glm::vec3(0.8f));
-  s.camera.position = {0.0f, cameraHeight, 0.001f};
-  s.camera.target = {0.0f, 0.0f, 0.0f};
+  s.camera.position = {cameraX, cameraHeight, 0.001f};
+  s.camera.target = {cameraX, 0.0f, 0.0f};
   s.camera.up = {0.0f, 0.0f, -1.0f};
   s.camera.fovY = glm::radians(50.0f);
   s.camera.nearZ = 0.1f;
@@ -58,13 +59,21 @@ scene::Scene PlankScene(bool spot, float cameraHeight = 1.0f) {
     l.outerConeAngle = glm::radians(kSpotOuterDegrees);
     s.spotLights.push_back(l);
   }
+  if (point) {
+    scene::PointLight l;
+    l.position = *point;
+    l.range = 10.0f;
+    s.pointLights.push_back(l);
+  }
   s.finalize();
   return s;
 }
 
 // Geometric penumbra widths on the floor (world units) for the plank's mid height.
 double SunPenumbra(double degrees) { return kPlankHeight * 2.0 * std::tan(0.5 * glm::radians(degrees)); }
-double SpotPenumbra(double radius) { return 2.0 * radius * kPlankHeight / (kSpotHeight - kPlankHeight); }
+// A light disc or sphere of `radius` at `height` above the edge: similar triangles.
+double LocalPenumbra(double radius, double height) { return 2.0 * radius * kPlankHeight / (height - kPlankHeight); }
+double SpotPenumbra(double radius) { return LocalPenumbra(radius, kSpotHeight); }
 // One map texel on the floor.
 double SunTexel() { return 6.0 / kResolution; }
 double SpotTexel() { return kSpotHeight * 2.0 * std::tan(glm::radians(kSpotOuterDegrees)) / kResolution; }
@@ -121,16 +130,18 @@ class PcssTest : public BackendTest {
   }
 
   // The ramp's width and centre against the geometry, and exact 1 and 0 past its ends.
-  Ramp ExpectPenumbra(const std::string& what, const tech::LabBuffers& lab, double want, double texel, double cameraHeight = 1.0) {
+  Ramp ExpectPenumbra(const std::string& what, const tech::LabBuffers& lab, double want, double texel, double cameraHeight = 1.0,
+                      double centre = 0.0, double tolerance = 0.02) {
     Ramp r = MeasureRamp(lab);
     std::printf("%s: penumbra %.5f (10-90 %% %.5f), geometry %.5f, ratio %.4f, centre %.5f\n", what.c_str(), r.width(), r.x90 - r.x10, want,
                 r.width() / want, r.centre());
     const double pixel = cameraHeight * 2.0 * std::tan(glm::radians(25.0)) / kSize;  // at the floor
-    EXPECT_NEAR(r.width(), want, 0.02 * want) << what << ": 10-90 % distance " << r.x90 - r.x10;
-    EXPECT_NEAR(r.centre(), 0.0, texel + pixel) << what;
-    const double margin = 0.5 * want * 1.02 + 2 * texel + pixel;
+    EXPECT_NEAR(r.width(), want, tolerance * want) << what << ": 10-90 % distance " << r.x90 - r.x10;
+    EXPECT_NEAR(r.centre(), centre, texel + pixel) << what;
+    const double margin = 0.5 * want * (1.0 + tolerance) + 2 * texel + pixel;
     int lit = 0, umbra = 0;
-    for (auto [x, v] : r.samples) {
+    for (auto [px, v] : r.samples) {
+      const double x = px - centre;
       if (x > margin) {
         ++lit;
         EXPECT_GE(v, 1.0f - 1e-6f) << what << " lit floor at x = " << x;
@@ -161,6 +172,50 @@ TEST_P(PcssTest, SpotPenumbraFollowsSimilarTriangles) {
   EXPECT_NEAR(large.width() / small.width(), 2.0, 0.04);
 }
 
+// cube: a point light over the plank's edge, a sphere of radius light_size; the receiver under it
+// reads the -Y face, whose planar depths are the heights, so the penumbra is the spot's similar
+// triangles at the light's height: 2 r h / (H - h). Heights 4 and 3.5 (face texels on the floor
+// 2 H / 512 = 0.0156 and 0.0137; 0.101 to 0.270: 7 to 17 texels). Tolerance 2 % as above, the
+// plank's thickness now 1.2 % at 3.5 (h / (H - h) for h = 2.02 against 2.01).
+TEST_P(PcssTest, CubePenumbraFollowsSimilarTriangles) {
+  for (float height : {4.0f, 3.5f}) {
+    const glm::vec3 light(0.0f, height, 0.0f);
+    scene::Scene s = PlankScene(false, 1.0f, &light);
+    char what[64];
+    std::snprintf(what, sizeof what, "cube height %.1f light_size=", height);
+    const double texel = 2.0 * height / kResolution;
+    Ramp small = ExpectPenumbra(what + std::string("0.05"), Render("cube", s, {{"light_size", "0.05"}}), LocalPenumbra(0.05, height), texel);
+    Ramp large = ExpectPenumbra(what + std::string("0.1"), Render("cube", s, {{"light_size", "0.1"}}), LocalPenumbra(0.1, height), texel);
+    EXPECT_NEAR(large.width() / small.width(), 2.0, 0.04) << what;
+  }
+}
+
+// The cube's face edge: the light at (-1.99, 4, 0) puts the plank's shadow edge (its top corner,
+// the silhouette from the side) at x = 1.99 h / (4 - h) = 2.030 on the floor, seen at 45 degrees:
+// the penumbra straddles the -Y face (left half) and the +X face (right half); the search and the
+// box step across the edge in direction space (cube/pcss.hlsli). On -Y the plank's top and the
+// floor are perpendicular to the axis: the width is 2 r h / (H - h) as overhead (2 %, measured
+// 1.0 %). On +X both are tilted 45 degrees to the axis: the blockers' planar depths fall across the
+// search region (radius 0.24 at planar depth 4: up to 6 % nearer at its far side, about half that
+// on average, and (dR - dB) / dB grows twice as fast), and the face's vertical box projects onto
+// the floor stretched by X / 4 <= 1.035; together up to 10 % wider on that half, 5 % on the whole
+// ramp: tolerance 8 %. Measured 1.051 x. A seam shows as a jump between neighbouring pixels: no
+// step may exceed twice the mean step of the ideal ramp (pixel / width).
+TEST_P(PcssTest, CubePenumbraAcrossAFaceEdge) {
+  const glm::vec3 light(-1.99f, 4.0f, 0.0f);
+  const double edge = -light.x * kPlankTop / (light.y - kPlankTop);
+  const double want = 2.0 * 0.1 * kPlankTop / (light.y - kPlankTop);
+  scene::Scene s = PlankScene(false, 1.0f, &light, float(edge));
+  Ramp r = ExpectPenumbra("cube across the -Y/+X edge light_size=0.1", Render("cube", s, {{"light_size", "0.1"}}), want, 2.0 * 4.0 / kResolution,
+                          1.0, edge, 0.08);
+  const double pixel = 2.0 * std::tan(glm::radians(25.0)) / kSize;
+  double largest = 0.0;
+  for (size_t k = 1; k < r.samples.size(); ++k)
+    if (r.samples[k].first > r.samples[k - 1].first) largest = std::max(largest, double(std::abs(r.samples[k].second - r.samples[k - 1].second)));
+  std::printf("cube across the face edge: largest step %.4f, ideal %.4f\n", largest, pixel / want);
+  EXPECT_LE(largest, 2.0 * pixel / want);
+}
+
 // csm: each cascade is its own orthographic map with its own world texel size, which the fit
 // makes from the view and the resolution: the penumbra must not change with either. The camera
 // at 0.4 sees 0.37 of floor; the cascade covering it is about 0.41 wide, 0.0026 per texel at 160
@@ -173,6 +228,36 @@ TEST_P(PcssTest, CsmPenumbraDoesNotDependOnTheCascadeFit) {
     std::string what = std::string("csm cascades=") + cascades + " resolution=" + resolution + " light_size=1.2";
     tech::LabBuffers lab = Render("csm", s, {{"light_size", "1.2"}, {"cascades", cascades}, {"resolution", resolution}});
     ExpectPenumbra(what, lab, SunPenumbra(1.2), 0.005, height);
+  }
+}
+
+// sdsm: the partitions are fitted to the analysed samples, each with its own texel size (oblong:
+// the tight box of the visible floor), written by fit.hlsl (cull=gpu) or the CPU (readback); the
+// lighting derives each partition's texel size per axis and its depth range from the partition's
+// own scale and offset, and with pcss the boxes reach up to the scene's top so the plank is not
+// pancaked onto the floor's box. The camera looks down the floor at 27 degrees, so the view depth
+// runs from 0.77 to 3.9 and the partitions' boxes differ in size (about 0.005 to 0.013 per texel at
+// 160 .. 256); the central rows (at 1.34, pixels 0.0098 wide) lie on the split between the first
+// two of 2 or 3 partitions, so both partitions' scales are measured. 4 degrees is a 0.140
+// penumbra: 14 pixels, 11 to 28 texels (under pcss_max_kernel, 31).
+TEST_P(PcssTest, SdsmPenumbraDoesNotDependOnThePartitions) {
+  scene::Scene s = PlankScene(false);
+  s.camera.position = {0.0f, 0.6f, 0.9f};
+  s.camera.target = {0.0f, 0.0f, -0.3f};
+  s.camera.up = {0.0f, 1.0f, 0.0f};
+  const double distance = glm::length(s.camera.target - s.camera.position);
+  const std::map<std::string, std::string> layouts[] = {
+      {{"cascades", "1"}, {"resolution", "256"}},
+      {{"cascades", "3"}, {"resolution", "256"}},
+      {{"cascades", "3"}, {"resolution", "160"}, {"cull", "readback"}},
+      {{"cascades", "2"}, {"resolution", "256"}, {"tight", "0"}},
+      {{"cascades", "3"}, {"resolution", "256"}, {"accel", "hpsm"}},
+  };
+  for (std::map<std::string, std::string> p : layouts) {
+    std::string what = "sdsm";
+    for (const auto& [k, v] : p) what += " " + k + "=" + v;
+    p["light_size"] = "4";
+    ExpectPenumbra(what, Render("sdsm", s, p), SunPenumbra(4), 0.015, distance);
   }
 }
 
@@ -262,6 +347,16 @@ TEST_P(PcssTest, SunAndSpotPenumbraeMatchTheRayTracedAreaLight) {
                             SpotTexel());
 }
 
+// The cube's point light as a sphere of radius 0.1 against the reference's sphere light: from the
+// edge 1.99 away its silhouette is a disc of radius 0.1 / sqrt(1 - (0.1 / 1.99)^2) = 1.0013 x 0.1,
+// so the same gap and tolerance as the spot's disc apply.
+TEST_P(PcssTest, CubePenumbraMatchesTheRayTracedSphereLight) {
+  const glm::vec3 light(0.0f, kSpotHeight, 0.0f);
+  scene::Scene s = PlankScene(false, 1.0f, &light);
+  ExpectMatchesTheAreaLight("cube light_size=0.1", Render("cube", s, {{"light_size", "0.1"}}), s, eval::ReferenceLight::MakePoint(light, 0.1f),
+                            SpotPenumbra(0.1), 2.0 * kSpotHeight / kResolution);
+}
+
 SP_INSTANTIATE_BACKEND_TESTS(PcssTest);
 
 // Bad values are refused by name before any rendering: these run on the null backend too.
@@ -276,9 +371,11 @@ TEST_P(PcssValidationTest, OutOfRangeParametersAreNamed) {
       {"kernel", {{"filter", "box"}, {"kernel", "17"}}},
       {"kernel", {{"filter", "gauss"}, {"kernel", "31"}}},
   };
-  for (const std::string technique : {"basic", "spot", "csm"})
+  for (const std::string technique : {"basic", "spot", "csm", "sdsm", "cube"})
     for (const auto& [name, params] : cases) {
-      if (technique == "spot" && name == "light_size" && params.at("light_size") == "45") continue;  // a radius: 45 is valid
+      const bool local = technique == "spot" || technique == "cube";
+      if (local && name == "light_size" && params.at("light_size") == "45") continue;  // a radius: 45 is valid
+      if (technique == "cube" && params.at("filter") == "gathercmp") continue;        // not a cube filter
       std::unique_ptr<tech::Technique> t = tech::CreateTechnique(technique);
       try {
         t->Configure(device(), tech::ParamValues::Parse(technique, t->Params(), params));
@@ -287,13 +384,22 @@ TEST_P(PcssValidationTest, OutOfRangeParametersAreNamed) {
         EXPECT_NE(std::string(e.what()).find(name + "="), std::string::npos) << e.what();
       }
     }
-  // sdsm writes its cascades' constants on the GPU without PCSS's: refused by name.
-  std::unique_ptr<tech::Technique> sdsm = tech::CreateTechnique("sdsm");
-  try {
-    sdsm->Configure(device(), tech::ParamValues::Parse("sdsm", sdsm->Params(), {{"filter", "pcss"}}));
-    ADD_FAILURE() << "sdsm: expected an error for filter=pcss";
-  } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("filter=pcss"), std::string::npos) << e.what();
+  // Combinations without a PCSS path, refused naming the parameter and why.
+  const std::tuple<std::string, std::map<std::string, std::string>, std::string> refused[] = {
+      {"cube", {{"filter", "pcss"}, {"storage", "radial"}}, "storage=depth"},
+      {"psm", {{"filter", "pcss"}}, "texel size is not uniform"},
+      {"tsm", {{"filter", "pcss"}}, "texel size is not uniform"},
+      {"vsdct", {{"filter", "pcss"}}, "filter=pcss is not offered"},
+      {"paraboloid", {{"filter", "pcss"}}, "filter"},
+  };
+  for (const auto& [technique, params, why] : refused) {
+    std::unique_ptr<tech::Technique> t = tech::CreateTechnique(technique);
+    try {
+      t->Configure(device(), tech::ParamValues::Parse(technique, t->Params(), params));
+      ADD_FAILURE() << technique << ": expected filter=pcss to be refused";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(why), std::string::npos) << e.what();
+    }
   }
   // gathercmp takes 31.
   std::unique_ptr<tech::Technique> t = tech::CreateTechnique("basic");
@@ -303,12 +409,14 @@ TEST_P(PcssValidationTest, OutOfRangeParametersAreNamed) {
 SP_INSTANTIATE_VALIDATION_TESTS(PcssValidationTest);
 
 // Mesa's one rasterizer and sampler under both backends and the toolchain's fixed arithmetic (as
-// for the other filters, shadow-filter-test.cpp): the PCSS images must be identical.
+// for the other filters, shadow-filter-test.cpp): the PCSS images must be identical, the cube's
+// across a face edge included.
 TEST(PcssCrossBackend, PlankRendersIdenticallyOnBothBackends) {
-  for (bool spot : {false, true}) {
-    scene::Scene s = PlankScene(spot);
-    std::string technique = spot ? "spot" : "basic";
-    CrossBackendFrame f = RenderOnBothBackends(technique, {{"filter", "pcss"}, {"resolution", "512"}, {"light_size", spot ? "0.1" : "8"}}, s, 96, 96);
+  const glm::vec3 point(-1.99f, 4.0f, 0.0f);  // over a face edge, as CubePenumbraAcrossAFaceEdge
+  for (std::string technique : {"basic", "spot", "cube"}) {
+    const bool spot = technique == "spot";
+    scene::Scene s = PlankScene(spot, 1.0f, technique == "cube" ? &point : nullptr, technique == "cube" ? 2.0f : 0.0f);
+    CrossBackendFrame f = RenderOnBothBackends(technique, {{"filter", "pcss"}, {"resolution", "512"}, {"light_size", technique == "basic" ? "8" : "0.1"}}, s, 96, 96);
     size_t differing = CompareImages("pcss-" + technique, 96, 96, f.images[0].data(), f.images[1].data(), 0);
     if (f.mesa) EXPECT_EQ(differing, 0u) << technique;
     else EXPECT_LT(differing, size_t(96 * 96 / 200)) << technique;

@@ -4,6 +4,7 @@
 #pragma once
 #include <filesystem>
 #include <glm/glm.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -107,6 +108,9 @@ struct CameraKey {
   float time = 0.0f;  // in [0, 1], increasing along the path; the first is 0 and the last 1
   glm::vec3 position{0.0f};
   glm::vec3 target{0.0f, 0.0f, -1.0f};
+  // The directional light's direction at this key (DirectionalLight::direction, unit length), when
+  // the path was recorded with one (a viewer that turns the sun); nothing for the built-in paths.
+  std::optional<glm::vec3> lightDirection;
 };
 
 // A deterministic camera motion parameterised by t in [0, 1], for temporal measurements: position
@@ -118,6 +122,37 @@ struct CameraPath {
   std::vector<CameraKey> keys;
 
   Camera at(double t) const;  // t is clamped to [0, 1]
+};
+
+// Camera paths as JSON files, so a path flown in the viewer becomes a lab run (`shadowport bench
+// --path recorded.json`; docs/viewer-ui.md gives the format). Save writes every key with its `t`;
+// Load also takes keys timed in seconds (`time`, mapped onto [0, 1]) and throws
+// std::runtime_error naming the file and the offending key or field for malformed input (a missing
+// field, a value that is not a finite number, fewer than 2 keys, times that do not increase, light
+// directions on some keys only). A loaded path is named after the file as given.
+void SaveCameraPath(const CameraPath& path, const std::filesystem::path& file);
+CameraPath LoadCameraPath(const std::filesystem::path& file);
+// Whether a --path value names a file rather than one of a scene's paths: it ends in .json or is
+// an existing file.
+bool IsCameraPathFile(const std::string& nameOrFile);
+
+// Records a path from the frames a viewer draws: add() once per frame with the time in seconds;
+// a frame whose time does not advance (a paused clock) adds nothing. The lens (fovY, near, far, up)
+// is the first frame's.
+class CameraPathRecorder {
+ public:
+  void add(double seconds, const Camera& camera, const std::optional<glm::vec3>& lightDirection = std::nullopt);
+  size_t size() const { return seconds_.size(); }
+  double durationSeconds() const { return seconds_.empty() ? 0.0 : seconds_.back() - seconds_.front(); }
+  void clear();
+  // The keys so far, times mapped onto [0, 1]; throws std::runtime_error with fewer than 2.
+  CameraPath path(const std::string& name = "recorded") const;
+  void save(const std::filesystem::path& file) const { SaveCameraPath(path(file.stem().string()), file); }
+
+ private:
+  Camera lens_;
+  std::vector<double> seconds_;
+  std::vector<CameraKey> keys_;
 };
 
 struct Scene {
@@ -140,6 +175,13 @@ struct Scene {
   size_t triangleCount() const;
   // Throws std::invalid_argument listing the scene's paths for an unknown name.
   const CameraPath& cameraPath(const std::string& name) const;
+  // As cameraPath, but a name that IsCameraPathFile is loaded (LoadCameraPath) and added to the
+  // scene's paths under that name first (replacing one loaded before).
+  const CameraPath& cameraPathOrFile(const std::string& nameOrFile);
+  // A lab run has one light (the reference is traced for it): a path recorded with the light's
+  // direction sets `light` to its first key's. Returns false when the recorded light turns along
+  // the path, which the caller reports (only the camera's motion is replayed then).
+  bool useRecordedLight(const CameraPath& path);
 };
 
 struct SceneOptions {

@@ -165,6 +165,8 @@ Ref<ShaderResourceView> MakeSliceArraySrv(Device& device, Texture2D* texture);
 // in front of the stored depth is lit), BORDER addressing with depth 1 so outside the map is lit.
 Ref<SamplerState> MakeShadowComparisonSampler(Device& device);
 Ref<Buffer> MakeConstantBuffer(Device& device, uint32_t bytes, const char* name);
+// USAGE_DYNAMIC with CPU write access: rewritten every frame through Map(WRITE_DISCARD).
+Ref<Buffer> MakeDynamicBuffer(Device& device, uint32_t bytes, uint32_t bindFlags, const char* name);
 // A buffer for raw (ByteAddressBuffer) views, and its whole-buffer raw views.
 Ref<Buffer> MakeRawBuffer(Device& device, uint32_t bytes, uint32_t bindFlags, const char* name, uint32_t extraMiscFlags = 0);
 Ref<UnorderedAccessView> MakeRawUav(Device& device, Buffer* buffer);
