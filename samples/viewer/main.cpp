@@ -1,31 +1,41 @@
 // viewer: a window on a scene, rendered by a shadow technique through an sp::SwapChain.
 //
 //   viewer [--backend vulkan|gl] [--scene NAME|file.gltf] [--technique NAME] [--param k=v]...
-//          [--size WxH] [--sync 0|1] [--validate] [--frames N --screenshot out.png]
+//          [--size WxH] [--sync 0|1] [--validate] [--frames N --screenshot out.png] [--ui]
+//          [--record FILE.json] [--replay FILE.json]
 //
 // Mouse: left drag looks around, right drag turns the sun. Keys: W A S D move, Q E down/up,
-// Shift faster; 1-9 pick a technique; Tab picks a parameter, [ and ] step it; F12 saves a
-// screenshot; Esc quits. With --frames N the viewer renders the scene's own camera and light N
-// times, saves what the window shows to --screenshot and exits: the same picture as
-// `shadowport render` with the same scene, technique, parameters and size.
+// Shift faster; 1-9 pick a technique; Tab picks a parameter, [ and ] step it; F1 shows or hides
+// the panel; R starts or stops recording the camera path; F12 saves a screenshot; Esc quits.
+// With --frames N the viewer renders the scene's own camera and light N times, saves what the
+// window shows to --screenshot and exits: the same picture as `shadowport render` with the same
+// scene, technique, parameters and size (the panel is off unless --ui asks for it).
 #include <sp/rhi/rhi.h>
 #include <sp/scene/scene.h>
+#include <sp/tech/gpu-timer.h>
 #include <sp/tech/renderer.h>
 #include <sp/tech/technique.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "fly-camera.h"
+#include "imgui-renderer.h"
+#include "panel.h"
 
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
+#include <imgui.h>
+#include <backends/imgui_impl_glfw.h>
 #include <X11/Xlib.h>
 #include <X11/Xutil.h>
 // GLFW's X11 handles. glfw3native.h declares them, but with GLFW_EXPOSE_NATIVE_X11 it also
@@ -39,6 +49,8 @@ Window glfwGetX11Window(GLFWwindow* window);
 
 namespace {
 
+constexpr double kFrameSeconds = 1.0 / 60.0;  // the clock of a --frames run
+
 struct Options {
   sp::Backend backend = sp::Backend::Vulkan;
   std::string scene = "default", technique = "basic";
@@ -48,11 +60,15 @@ struct Options {
   bool validate = false;
   int frames = 0;  // > 0: non-interactive
   std::string screenshot;
+  bool ui = false;      // the panel in --frames mode (interactively it is on anyway)
+  std::string record;   // where a recorded path goes (default viewer-path-<N>.json)
+  std::string replay;   // a recorded path to fly instead of the fly camera
 };
 
 [[noreturn]] void Usage(const std::string& why) {
   throw std::invalid_argument(why + "\nusage: viewer [--backend vulkan|gl] [--scene NAME|file.gltf] [--technique NAME] [--param k=v]... "
-                                    "[--size WxH] [--sync 0|1] [--validate] [--frames N --screenshot out.png]");
+                                    "[--size WxH] [--sync 0|1] [--validate] [--frames N --screenshot out.png] [--ui] "
+                                    "[--record FILE.json] [--replay FILE.json]");
 }
 
 Options ParseOptions(int argc, char** argv) {
@@ -87,6 +103,12 @@ Options ParseOptions(int argc, char** argv) {
       if (o.frames <= 0) Usage("--frames must be at least 1");
     } else if (a == "--screenshot") {
       o.screenshot = value();
+    } else if (a == "--ui") {
+      o.ui = true;
+    } else if (a == "--record") {
+      o.record = value();
+    } else if (a == "--replay") {
+      o.replay = value();
     } else {
       Usage("unknown option " + a);
     }
@@ -146,15 +168,35 @@ class Viewer {
     sd.bufferCount = 2;
     sd.syncInterval = o.sync;
     swapChain_ = sp::CreateSwapChain(*device_, sd);
+    if (!o.replay.empty()) replay_ = sp::scene::LoadCameraPath(o.replay);
     Rebuild();
   }
 
   ~Viewer() {
+    if (ImGui::GetCurrentContext()) {
+      ui_.reset();
+      ImGui_ImplGlfw_Shutdown();
+      ImGui::DestroyContext();
+    }
     renderer_.reset();
     swapChain_.reset();  // before the device, as DXGI wants its swap chain released first
   }
 
-  void Frame() {
+  // The panel: ImGui gets GLFW's input (it chains the callbacks set before, so call this after
+  // them) and draws through ImGuiRenderer into the back buffer. Without this call (--frames
+  // without --ui) no ImGui context exists and the window is exactly `shadowport render`'s picture.
+  void StartUi() {
+    ImGui::CreateContext();
+    ImGui::GetIO().IniFilename = nullptr;  // a run leaves no imgui.ini behind
+    ImGui_ImplGlfw_InitForOther(window_, true);
+    ui_ = std::make_unique<sp::viewer::ImGuiRenderer>(*device_, sp::FORMAT_R8G8B8A8_UNORM_SRGB);
+    timer_ = std::make_unique<sp::tech::GpuTimer>(*device_);
+    renderer_->SetGpuTimer(timer_.get());
+    showUi_ = true;
+  }
+
+  // seconds: the clock that times recorded keys and moves a replayed path.
+  void Frame(double seconds) {
     int w = 0, h = 0;
     glfwGetFramebufferSize(window_, &w, &h);
     if (w == 0 || h == 0) return;  // minimised: nothing to show
@@ -163,15 +205,35 @@ class Viewer {
       swapChain_->ResizeBuffers(0, uint32_t(w), uint32_t(h), sp::FORMAT_UNKNOWN);
       Rebuild();
     }
-    // --- Path recording hook (viewerui branch): record camera_->camera() per frame here, or
-    // --- replace it with a recorded path's camera before rendering.
+    if (replay_) Replay(seconds);
+    if (recording_) recorder_.add(seconds, camera_->camera(), light_.direction);
     renderer_->RenderFrame(camera_->camera(), light_);
     sp::DeviceContext* ctx = device_->GetImmediateContext();
     ctx->CopyResource(swapChain_->GetBuffer(0), renderer_->colorTarget());
-    // --- UI hook (viewerui branch): draw the ImGui panel into swapChain_->GetBuffer(0) here,
-    // --- through an RTV released before the next ResizeBuffers.
+    if (ui_) DrawUi(*ctx);
     swapChain_->Present(opt_.sync);
   }
+
+  void ToggleRecording() {
+    if (!recording_) {
+      recorder_.clear();
+      recording_ = true;
+      std::printf("recording the camera path (R stops)\n");
+      return;
+    }
+    recording_ = false;
+    if (recorder_.size() < 2) {
+      std::printf("recording stopped: %zu key(s), a path needs 2; nothing saved\n", recorder_.size());
+      return;
+    }
+    std::string file = opt_.record.empty() ? "viewer-path-" + std::to_string(++paths_) + ".json" : opt_.record;
+    recorder_.save(file);
+    std::printf("saved %zu keys (%.2f s) to %s; replay it in the lab with:\n  shadowport bench --scene %s --technique %s --backend %s --path %s\n",
+                recorder_.size(), recorder_.durationSeconds(), file.c_str(), opt_.scene.c_str(), technique_.c_str(),
+                sp::BackendName(opt_.backend), file.c_str());
+    std::fflush(stdout);
+  }
+  bool Recording() const { return recording_; }
 
   void Screenshot(const std::string& path) {
     WritePng(path, uint32_t(width_), uint32_t(height_),
@@ -182,6 +244,10 @@ class Viewer {
   // Interactive controls (GLFW callbacks forward here).
   void OnKey(int key, int action) {
     if (action != GLFW_PRESS) return;
+    if (key == GLFW_KEY_F1 && ui_) showUi_ = !showUi_;
+    // Typing into the panel's text field is not a command to the viewer.
+    if (ui_ && showUi_ && ImGui::GetIO().WantCaptureKeyboard) return;
+    if (key == GLFW_KEY_R) ToggleRecording();
     if (key == GLFW_KEY_ESCAPE) glfwSetWindowShouldClose(window_, GLFW_TRUE);
     if (key >= GLFW_KEY_1 && key <= GLFW_KEY_9 && size_t(key - GLFW_KEY_1) < techniques_.size()) {
       technique_ = techniques_[size_t(key - GLFW_KEY_1)];
@@ -200,6 +266,8 @@ class Viewer {
   void OnMouse(double x, double y) {
     double dx = x - mouseX_, dy = y - mouseY_;
     mouseX_ = x, mouseY_ = y;
+    // A drag that started on the panel moves its widgets, not the camera or the sun.
+    if (ui_ && showUi_ && ImGui::GetIO().WantCaptureMouse) return;
     if (glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS) camera_->Look(dx, dy);
     if (glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS) viewer::DragLight(light_, dx, dy);
   }
@@ -214,9 +282,77 @@ class Viewer {
   uint64_t ValidationErrors() const { return device_->ValidationErrorCount(); }
 
  private:
+  // Interactively a recorded path loops every kReplaySeconds (the file keeps the keys' order and
+  // spacing, not their seconds); with --frames N its N frames span it from start to end.
+  static constexpr double kReplaySeconds = 10.0;
+  void Replay(double seconds) {
+    double t = opt_.frames > 1 ? seconds / ((opt_.frames - 1) * kFrameSeconds) : std::fmod(seconds / kReplaySeconds, 1.0);
+    camera_ = std::make_unique<viewer::FlyCamera>(replay_->at(t));
+    const std::vector<sp::scene::CameraKey>& k = replay_->keys;
+    if (!k.front().lightDirection) return;
+    size_t i = 1;
+    while (i + 1 < k.size() && k[i].time < t) ++i;
+    float f = std::clamp(float((t - k[i - 1].time) / std::max(1e-6f, k[i].time - k[i - 1].time)), 0.0f, 1.0f);
+    light_.direction = glm::normalize(glm::mix(*k[i - 1].lightDirection, *k[i].lightDirection, f));
+  }
+
+  void DrawUi(sp::DeviceContext& ctx) {
+    if (timer_)
+      for (const sp::tech::FrameTimes& f : timer_->Collect(ctx, false)) gpuMs_.assign(f.begin(), f.end());
+    ImGui_ImplGlfw_NewFrame();
+    ImGui::NewFrame();
+    if (showUi_) {
+      sp::viewer::PanelState st;
+      st.techniques = techniques_;
+      st.technique = int(std::find(techniques_.begin(), techniques_.end(), technique_) - techniques_.begin());
+      st.params = specs_;
+      st.values = params_;
+      for (const auto& [name, value] : pending_) st.values[name] = value;
+      st.gpuMs = gpuMs_;
+      st.offerOverlays = false;  // cascade colours, shadow-map view and heat map are not wired yet
+      st.recordingPath = recording_;
+      st.recordedKeys = recorder_.size();
+      Apply(sp::viewer::DrawPanel(st));
+    }
+    ImGui::Render();
+    // A view per frame, released before the next ResizeBuffers (which refuses live references).
+    sp::Ref<sp::RenderTargetView> rtv = device_->CreateRenderTargetView(swapChain_->GetBuffer(0));
+    ui_->Render(ctx, rtv.get(), ImGui::GetDrawData());
+  }
+
+  void Apply(const sp::viewer::PanelChanges& c) {
+    if (c.technique && size_t(*c.technique) < techniques_.size()) {
+      technique_ = techniques_[size_t(*c.technique)];
+      params_.clear(), pending_.clear();
+      param_ = 0;
+      Rebuild();
+      return;
+    }
+    if (c.recordingPath && *c.recordingPath != recording_) ToggleRecording();
+    if (c.savePath && recording_) ToggleRecording();
+    for (const auto& [name, value] : c.params) pending_[name] = value;
+    // A slider reports every step of a drag; reconfiguring (new shadow maps, new shaders) on each
+    // would stall the drag, so changes wait for the button's release or kApplyEvery frames.
+    ++framesPending_;
+    if (pending_.empty() || (ImGui::IsMouseDown(ImGuiMouseButton_Left) && framesPending_ < kApplyEvery)) return;
+    std::map<std::string, std::string> before = params_;
+    for (const auto& [name, value] : pending_) params_[name] = value;
+    pending_.clear();
+    framesPending_ = 0;
+    try {
+      Rebuild();
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "viewer: %s\n", e.what());
+      params_ = before;
+      Rebuild();
+    }
+  }
+  static constexpr int kApplyEvery = 15;
+
   // A new technique (or new parameters, or a new size): the renderer is made again, as
   // `shadowport render` makes it, so a frame of the viewer is a frame of `render`.
   void Rebuild() {
+    pending_.clear();  // panel edits meant for the technique being replaced
     renderer_.reset();
     std::unique_ptr<sp::tech::Technique> t = sp::tech::CreateTechnique(technique_);
     specs_ = t->Params();
@@ -224,6 +360,7 @@ class Viewer {
     params_ = values.all();
     t->Configure(*device_, values);
     renderer_ = std::make_unique<sp::tech::Renderer>(*device_, scene_, std::move(t), uint32_t(width_), uint32_t(height_));
+    renderer_->SetGpuTimer(timer_.get());
     Describe();
   }
 
@@ -276,6 +413,16 @@ class Viewer {
   int width_ = 0, height_ = 0;
   double mouseX_ = 0, mouseY_ = 0;
   int screenshots_ = 0;
+  std::unique_ptr<sp::viewer::ImGuiRenderer> ui_;
+  std::unique_ptr<sp::tech::GpuTimer> timer_;
+  bool showUi_ = false;
+  std::vector<std::pair<std::string, double>> gpuMs_;
+  std::map<std::string, std::string> pending_;  // parameter changes not applied yet
+  int framesPending_ = 0;
+  std::optional<sp::scene::CameraPath> replay_;
+  sp::scene::CameraPathRecorder recorder_;
+  bool recording_ = false;
+  int paths_ = 0;
 };
 
 int Run(const Options& o) {
@@ -294,21 +441,26 @@ int Run(const Options& o) {
     glfwSetWindowUserPointer(window, &v);
     glfwSetKeyCallback(window, [](GLFWwindow* w, int key, int, int action, int) { static_cast<Viewer*>(glfwGetWindowUserPointer(w))->OnKey(key, action); });
     glfwSetCursorPosCallback(window, [](GLFWwindow* w, double x, double y) { static_cast<Viewer*>(glfwGetWindowUserPointer(w))->OnMouse(x, y); });
+    if (o.frames == 0 || o.ui) v.StartUi();
     if (o.frames > 0) {
+      // A fixed clock, so a recording made here is the same on every run.
+      if (!o.record.empty()) v.ToggleRecording();
       for (int i = 0; i < o.frames; ++i) {
         glfwPollEvents();
-        v.Frame();
+        v.Frame(i * kFrameSeconds);
       }
+      if (v.Recording()) v.ToggleRecording();
       v.Screenshot(o.screenshot);
     } else {
-      auto last = std::chrono::steady_clock::now();
+      auto start = std::chrono::steady_clock::now(), last = start;
       while (!glfwWindowShouldClose(window)) {
         glfwPollEvents();
         auto now = std::chrono::steady_clock::now();
         v.Move(std::chrono::duration<double>(now - last).count());
         last = now;
-        v.Frame();
+        v.Frame(std::chrono::duration<double>(now - start).count());
       }
+      if (v.Recording()) v.ToggleRecording();  // quitting while recording keeps the path
     }
     if (v.ValidationErrors()) {
       std::fprintf(stderr, "viewer: %llu validation error(s)\n", static_cast<unsigned long long>(v.ValidationErrors()));

@@ -118,7 +118,7 @@ PanelChanges DrawPanel(const PanelState& s, PanelLayout* layout, ImVec2 pos) {
     }
   }
 
-  if (ImGui::CollapsingHeader("show", ImGuiTreeNodeFlags_DefaultOpen)) {
+  if (s.offerOverlays && ImGui::CollapsingHeader("show", ImGuiTreeNodeFlags_DefaultOpen)) {
     c.cascadeColours = d.checkbox("cascade colours", s.cascadeColours);
     c.showShadowMap = d.checkbox("show shadow map", s.showShadowMap);
     c.errorHeatMap = d.checkbox("error heat map (traces the reference)", s.errorHeatMap);

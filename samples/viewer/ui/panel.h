@@ -23,6 +23,9 @@ struct PanelState {
   std::vector<tech::ParamSpec> params;
   std::map<std::string, std::string> values;
   std::vector<std::pair<std::string, double>> gpuMs;  // pass -> ms, in the order to show
+  // Whether the viewer can do the overlays below: the toggles are drawn only when it can, so the
+  // panel shows no button that does nothing. (The panel's tests draw them all.)
+  bool offerOverlays = true;
   bool cascadeColours = false;
   bool showShadowMap = false;
   bool errorHeatMap = false;  // traces the reference for the current frame: slow, on demand
