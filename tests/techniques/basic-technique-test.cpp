@@ -7,6 +7,7 @@
 #include <regex>
 
 #include "backend-test.h"
+#include "technique-renderer.h"
 #include "cross-backend.h"
 #include "floating-box.h"
 #include <sp/tech/renderer.h>
@@ -18,9 +19,7 @@ class BasicTechniqueTest : public BackendTest {
  protected:
   std::unique_ptr<tech::Renderer> MakeRenderer(const scene::Scene& s, uint32_t w, uint32_t h,
                                                const std::map<std::string, std::string>& params = {}) {
-    std::unique_ptr<tech::Technique> t = tech::CreateTechnique("basic");
-    t->Configure(device(), tech::ParamValues::Parse("basic", t->Params(), params));
-    return std::make_unique<tech::Renderer>(device(), s, std::move(t), w, h);
+    return MakeTechniqueRenderer(device(), "basic", s, w, h, params);
   }
 };
 
@@ -62,11 +61,7 @@ TEST_P(BasicTechniqueTest, LitPassOfEveryTechniqueCreatesOnThisBackend) {
 TEST_P(BasicTechniqueTest, LabLitPassDrawsTheSameColourAsTheNormalOne) {
   const uint32_t W = 96, H = 64;
   scene::Scene s = scene::MakeBuiltinScene("default");
-  std::unique_ptr<tech::Technique> t = tech::CreateTechnique("basic");
-  t->Configure(device(), tech::ParamValues::Parse("basic", t->Params(), {{"resolution", "512"}}));
-  tech::RendererOptions ro;
-  ro.lab = true;
-  tech::Renderer r(device(), s, std::move(t), W, H, ro);
+  tech::Renderer r(device(), s, MakeConfiguredTechnique(device(), "basic", {{"resolution", "512"}}), W, H, LabOptions(true));
   r.RenderFrame(s.camera, s.light);
   std::vector<uint8_t> normal = r.ReadColor();
   r.RenderFrame(s.camera, s.light, tech::LitPass::Lab);

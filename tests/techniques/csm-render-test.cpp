@@ -7,6 +7,7 @@
 #include <set>
 
 #include "backend-test.h"
+#include "technique-renderer.h"
 #include "cross-backend.h"
 #include "csm/csm-technique.h"
 #include "floating-box.h"
@@ -22,11 +23,7 @@ class CsmTechniqueTest : public BackendTest {
  protected:
   std::unique_ptr<tech::Renderer> MakeRenderer(const scene::Scene& s, uint32_t w, uint32_t h, const std::map<std::string, std::string>& params,
                                                bool lab = false, const std::string& name = "csm") {
-    std::unique_ptr<tech::Technique> t = tech::CreateTechnique(name);
-    t->Configure(device(), tech::ParamValues::Parse(name, t->Params(), params));
-    tech::RendererOptions o;
-    o.lab = lab;
-    return std::make_unique<tech::Renderer>(device(), s, std::move(t), w, h, o);
+    return MakeTechniqueRenderer(device(), name, s, w, h, params, LabOptions(lab));
   }
   static CsmTechnique& Csm(tech::Renderer& r) { return static_cast<CsmTechnique&>(r.technique()); }
 };

@@ -5,6 +5,7 @@
 // stay exactly those of the CPU's segment-sphere test; bad combinations are refused by name, and
 // paraboloid and vsdct refuse accel with their reason.
 #include "backend-test.h"
+#include "technique-renderer.h"
 #include "cube-room.h"
 #include <sp/tech/hpsm-counters.h>
 #include <sp/tech/renderer.h>
@@ -15,9 +16,7 @@ namespace {
 class CubeHpsmTest : public BackendTest {
  public:
   std::unique_ptr<tech::Renderer> MakeRenderer(const scene::Scene& s, uint32_t w, uint32_t h, const std::map<std::string, std::string>& params) {
-    std::unique_ptr<tech::Technique> t = tech::CreateTechnique("cube");
-    t->Configure(device(), tech::ParamValues::Parse("cube", t->Params(), params));
-    return std::make_unique<tech::Renderer>(device(), s, std::move(t), w, h);
+    return MakeTechniqueRenderer(device(), "cube", s, w, h, params);
   }
 };
 
@@ -67,15 +66,7 @@ TEST_P(CubeHpsmTest, AcceleratedLookupsKeepTheExactShadows) {
 }
 
 TEST_P(CubeHpsmTest, BadAccelParametersAreRefusedByName) {
-  auto expectError = [&](std::map<std::string, std::string> p, const std::string& what) {
-    std::unique_ptr<tech::Technique> t = tech::CreateTechnique("cube");
-    try {
-      t->Configure(device(), tech::ParamValues::Parse("cube", t->Params(), p));
-      ADD_FAILURE() << "accepted " << what;
-    } catch (const std::invalid_argument& e) {
-      EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
-    }
-  };
+  auto expectError = [&](const TechniqueParams& p, const std::string& what) { ExpectConfigureRefused(device(), "cube", p, what); };
   expectError({{"accel", "hpsm"}, {"storage", "radial"}}, "storage=depth");
   expectError({{"accel", "minmax"}, {"filter", "pcss"}}, "not offered with filter=pcss");
   expectError({{"accel", "fast"}}, "accel");
@@ -86,14 +77,8 @@ TEST_P(CubeHpsmTest, BadAccelParametersAreRefusedByName) {
   expectError({{"accel", "hpsm"}, {"hpsm_build", "fetch"}}, "hpsm_build");
   // The other point-light techniques refuse accel by name, with their reason.
   for (const char* name : {"paraboloid", "vsdct"}) {
-    std::unique_ptr<tech::Technique> t = tech::CreateTechnique(name);
-    try {
-      t->Configure(device(), tech::ParamValues::Parse(name, t->Params(), {{"accel", "hpsm"}}));
-      ADD_FAILURE() << name << " accepted accel=hpsm";
-    } catch (const std::invalid_argument& e) {
-      EXPECT_NE(std::string(e.what()).find(std::string(name) + ": accel=hpsm is not offered: "), std::string::npos) << e.what();
-    }
-    EXPECT_NO_THROW(t->Configure(device(), tech::ParamValues::Parse(name, t->Params(), {{"accel", "none"}}))) << name;
+    ExpectConfigureRefused(device(), name, {{"accel", "hpsm"}}, std::string(name) + ": accel=hpsm is not offered: ");
+    EXPECT_NO_THROW(MakeConfiguredTechnique(device(), name, {{"accel", "none"}})) << name;
   }
 }
 

@@ -6,6 +6,7 @@
 #include <random>
 
 #include "backend-test.h"
+#include "technique-renderer.h"
 #include "cross-backend.h"
 #include "cube-room.h"
 #include "cube/cube-faces.h"
@@ -46,9 +47,7 @@ TEST(CubeFaces, FaceMatricesFollowTheCubeMapFaceTable) {
 class CubeTechniqueTest : public BackendTest {
  public:
   std::unique_ptr<tech::Renderer> MakeRenderer(const scene::Scene& s, uint32_t w, uint32_t h, const std::map<std::string, std::string>& params) {
-    std::unique_ptr<tech::Technique> t = tech::CreateTechnique("cube");
-    t->Configure(device(), tech::ParamValues::Parse("cube", t->Params(), params));
-    return std::make_unique<tech::Renderer>(device(), s, std::move(t), w, h);
+    return MakeTechniqueRenderer(device(), "cube", s, w, h, params);
   }
 };
 

@@ -2,6 +2,7 @@
 // frame is returned once, results are held back at most kMaxFramesInFlight frames, and misuse
 // (unbalanced or nested passes, frames) throws instead of measuring nonsense.
 #include "backend-test.h"
+#include "technique-renderer.h"
 #include <sp/tech/renderer.h>
 
 namespace sp::test {
@@ -11,9 +12,7 @@ class GpuTimerTest : public BackendTest {};
 
 TEST_P(GpuTimerTest, RendererFramesReportShadowLitAndTotal) {
   scene::Scene s = scene::MakeBuiltinScene("default");
-  std::unique_ptr<tech::Technique> t = tech::CreateTechnique("basic");
-  t->Configure(device(), tech::ParamValues::Parse("basic", t->Params(), {{"resolution", "256"}}));
-  tech::Renderer r(device(), s, std::move(t), 64, 64);
+  tech::Renderer r(device(), s, MakeConfiguredTechnique(device(), "basic", {{"resolution", "256"}}), 64, 64);
   tech::GpuTimer timer(device());
   r.SetGpuTimer(&timer);
   const int frames = 5;

@@ -16,6 +16,7 @@
 #include <random>
 
 #include "backend-test.h"
+#include "technique-renderer.h"
 #include "floating-box.h"
 #include "hpsm-maps.h"
 #include <sp/tech/renderer.h>
@@ -347,9 +348,7 @@ TEST_P(HpsmTest, AcceleratedPcssEqualsThePlainOneWhereTheMapsDecide) {
 // --- basic's lit pass
 
 std::unique_ptr<tech::Renderer> MakeBasic(Device& device, const scene::Scene& s, uint32_t w, uint32_t h, std::map<std::string, std::string> params) {
-  std::unique_ptr<tech::Technique> t = tech::CreateTechnique("basic");
-  t->Configure(device, tech::ParamValues::Parse("basic", t->Params(), params));
-  return std::make_unique<tech::Renderer>(device, s, std::move(t), w, h);
+  return MakeTechniqueRenderer(device, "basic", s, w, h, params);
 }
 
 tech::HpsmCounts Decisions(tech::Renderer& r) {
@@ -398,11 +397,7 @@ TEST_P(HpsmTest, BasicLitPassIsTheSameWithAndWithoutAcceleration) {
   EXPECT_EQ(CompareImages("floating-box-no-counters", W, H, reference.data(), img.data(), 0), 0u);
   EXPECT_EQ(Decisions(*quiet).total(), 0u);
   p["hpsm_counters"] = "1";
-  std::unique_ptr<tech::Technique> t = tech::CreateTechnique("basic");
-  t->Configure(device(), tech::ParamValues::Parse("basic", t->Params(), p));
-  tech::RendererOptions ro;
-  ro.lab = true;
-  tech::Renderer lab(device(), s, std::move(t), W, H, ro);
+  tech::Renderer lab(device(), s, MakeConfiguredTechnique(device(), "basic", p), W, H, LabOptions(true));
   lab.RenderFrame(s.camera, s.light);
   uint64_t normal = Decisions(lab).total();
   lab.RenderLitPass(s.camera, s.light, tech::LitPass::Lab);
@@ -434,9 +429,7 @@ TEST_P(HpsmTest, CsmAndSdsmLitPassesAreTheSameWithAndWithoutAcceleration) {
     std::string what = c.technique;
     for (auto& [k, v] : c.params) p[k] = v, what += "-" + k + "-" + v;
     auto make = [&](const std::map<std::string, std::string>& params) {
-      std::unique_ptr<tech::Technique> t = tech::CreateTechnique(c.technique);
-      t->Configure(device(), tech::ParamValues::Parse(c.technique, t->Params(), params));
-      return std::make_unique<tech::Renderer>(device(), s, std::move(t), W, H);
+      return MakeTechniqueRenderer(device(), c.technique, s, W, H, params);
     };
     std::unique_ptr<tech::Renderer> plain = make(p);
     plain->RenderFrame(s.camera, s.light);
@@ -489,18 +482,8 @@ TEST_P(HpsmTest, PlanesDecideAFlatReceiverUnderALowSunWhereMinMaxDoesNot) {
 // --- (4) parameters
 
 TEST_P(HpsmTest, BadParametersAreRefusedNamingTheParameter) {
-  auto configure = [&](std::map<std::string, std::string> p) {
-    std::unique_ptr<tech::Technique> t = tech::CreateTechnique("basic");
-    t->Configure(device(), tech::ParamValues::Parse("basic", t->Params(), p));
-  };
-  auto expectError = [&](std::map<std::string, std::string> p, const std::string& param) {
-    try {
-      configure(p);
-      ADD_FAILURE() << "accepted " << param;
-    } catch (const std::invalid_argument& e) {
-      EXPECT_NE(std::string(e.what()).find(param), std::string::npos) << e.what();
-    }
-  };
+  auto configure = [&](const TechniqueParams& p) { MakeConfiguredTechnique(device(), "basic", p); };
+  auto expectError = [&](const TechniqueParams& p, const std::string& param) { ExpectConfigureRefused(device(), "basic", p, param); };
   expectError({{"accel", "fast"}}, "accel");
   expectError({{"accel", "hpsm"}, {"hpsm_block", "-1"}}, "hpsm_block");
   expectError({{"accel", "hpsm"}, {"hpsm_block", "300"}}, "hpsm_block");
@@ -512,14 +495,8 @@ TEST_P(HpsmTest, BadParametersAreRefusedNamingTheParameter) {
   expectError({{"accel", "hpsm"}, {"hpsm_build", "texelfetch"}}, "hpsm_build");
   EXPECT_NO_THROW(configure({{"accel", "minmax"}, {"filter", "box"}, {"kernel", "5"}, {"hpsm_block", "8"}}));
   // csm: the same parameters, and no accel for moment filters.
-  auto csm = [&](std::map<std::string, std::string> p, const std::string& param, const std::string& technique = "csm") {
-    std::unique_ptr<tech::Technique> t = tech::CreateTechnique(technique);
-    try {
-      t->Configure(device(), tech::ParamValues::Parse(technique, t->Params(), p));
-      ADD_FAILURE() << technique << " accepted " << param;
-    } catch (const std::invalid_argument& e) {
-      EXPECT_NE(std::string(e.what()).find(param), std::string::npos) << e.what();
-    }
+  auto csm = [&](const TechniqueParams& p, const std::string& param, const std::string& technique = "csm") {
+    ExpectConfigureRefused(device(), technique, p, param);
   };
   csm({{"accel", "hpsm"}, {"filter", "vsm"}}, "accel");
   csm({{"accel", "minmax"}, {"hpsm_block", "3"}}, "hpsm_block");

@@ -6,6 +6,7 @@
 #include <glm/ext/matrix_transform.hpp>
 
 #include "backend-test.h"
+#include "technique-renderer.h"
 #include <sp/tech/renderer.h>
 
 namespace sp::test {
@@ -68,9 +69,7 @@ int EncodeSrgb(double v) {
 class LocalLightsTest : public BackendTest {
  protected:
   std::unique_ptr<tech::Renderer> MakeRenderer(const scene::Scene& s, uint32_t w, uint32_t h) {
-    std::unique_ptr<tech::Technique> t = tech::CreateTechnique("basic");
-    t->Configure(device(), tech::ParamValues::Parse("basic", t->Params(), {{"resolution", "256"}}));
-    return std::make_unique<tech::Renderer>(device(), s, std::move(t), w, h);
+    return MakeTechniqueRenderer(device(), "basic", s, w, h, {{"resolution", "256"}});
   }
 };
 

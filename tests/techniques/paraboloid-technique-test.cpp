@@ -8,6 +8,7 @@
 #include <random>
 
 #include "backend-test.h"
+#include "technique-renderer.h"
 #include "cross-backend.h"
 #include "cube-room.h"
 #include "paraboloid/paraboloid-map.h"
@@ -97,9 +98,7 @@ std::array<int, 2> ShadowPixelsPerHemisphere(const CubeRoom& room, const scene::
 class ParaboloidTechniqueTest : public BackendTest {
  public:
   std::unique_ptr<tech::Renderer> MakeRenderer(const scene::Scene& s, uint32_t w, uint32_t h, const std::map<std::string, std::string>& params) {
-    std::unique_ptr<tech::Technique> t = tech::CreateTechnique("paraboloid");
-    t->Configure(device(), tech::ParamValues::Parse("paraboloid", t->Params(), params));
-    return std::make_unique<tech::Renderer>(device(), s, std::move(t), w, h);
+    return MakeTechniqueRenderer(device(), "paraboloid", s, w, h, params);
   }
 };
 

@@ -20,6 +20,7 @@
 #include <glm/gtc/constants.hpp>
 
 #include "backend-test.h"
+#include "technique-renderer.h"
 #include "cross-backend.h"
 #include "reference.h"
 #include <sp/tech/renderer.h>
@@ -120,11 +121,7 @@ class PcssTest : public BackendTest {
     params.emplace("resolution", std::to_string(kResolution));
     params["filter"] = "pcss";
     params.emplace("pcss_max_kernel", "31");
-    std::unique_ptr<tech::Technique> t = tech::CreateTechnique(technique);
-    t->Configure(device(), tech::ParamValues::Parse(technique, t->Params(), params));
-    tech::RendererOptions ro;
-    ro.lab = true;
-    tech::Renderer r(device(), s, std::move(t), kSize, kSize, ro);
+    tech::Renderer r(device(), s, MakeConfiguredTechnique(device(), technique, params), kSize, kSize, LabOptions(true));
     r.RenderFrame(s.camera, s.light, tech::LitPass::Lab);
     return r.ReadLab();
   }
@@ -376,13 +373,7 @@ TEST_P(PcssValidationTest, OutOfRangeParametersAreNamed) {
       const bool local = technique == "spot" || technique == "cube";
       if (local && name == "light_size" && params.at("light_size") == "45") continue;  // a radius: 45 is valid
       if (technique == "cube" && params.at("filter") == "gathercmp") continue;        // not a cube filter
-      std::unique_ptr<tech::Technique> t = tech::CreateTechnique(technique);
-      try {
-        t->Configure(device(), tech::ParamValues::Parse(technique, t->Params(), params));
-        ADD_FAILURE() << technique << ": expected an error naming " << name;
-      } catch (const std::invalid_argument& e) {
-        EXPECT_NE(std::string(e.what()).find(name + "="), std::string::npos) << e.what();
-      }
+      ExpectConfigureRefused(device(), technique, params, name + "=");
     }
   // Combinations without a PCSS path, refused naming the parameter and why.
   const std::tuple<std::string, std::map<std::string, std::string>, std::string> refused[] = {
@@ -393,17 +384,10 @@ TEST_P(PcssValidationTest, OutOfRangeParametersAreNamed) {
       {"paraboloid", {{"filter", "pcss"}}, "filter"},
   };
   for (const auto& [technique, params, why] : refused) {
-    std::unique_ptr<tech::Technique> t = tech::CreateTechnique(technique);
-    try {
-      t->Configure(device(), tech::ParamValues::Parse(technique, t->Params(), params));
-      ADD_FAILURE() << technique << ": expected filter=pcss to be refused";
-    } catch (const std::invalid_argument& e) {
-      EXPECT_NE(std::string(e.what()).find(why), std::string::npos) << e.what();
-    }
+    ExpectConfigureRefused(device(), technique, params, why);
   }
   // gathercmp takes 31.
-  std::unique_ptr<tech::Technique> t = tech::CreateTechnique("basic");
-  EXPECT_NO_THROW(t->Configure(device(), tech::ParamValues::Parse("basic", t->Params(), {{"filter", "gathercmp"}, {"kernel", "31"}})));
+  EXPECT_NO_THROW(MakeConfiguredTechnique(device(), "basic", {{"filter", "gathercmp"}, {"kernel", "31"}}));
 }
 
 SP_INSTANTIATE_VALIDATION_TESTS(PcssValidationTest);

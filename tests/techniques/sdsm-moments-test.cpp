@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "backend-test.h"
+#include "technique-renderer.h"
 #include "floating-box.h"
 #include <sp/tech/renderer.h>
 #include "sdsm/sdsm-technique.h"
@@ -20,9 +21,7 @@ using Params = std::map<std::string, std::string>;
 class SdsmMomentsTest : public BackendTest {
  protected:
   std::unique_ptr<tech::Renderer> MakeRenderer(const scene::Scene& s, uint32_t w, uint32_t h, const Params& params) {
-    std::unique_ptr<tech::Technique> t = tech::CreateTechnique("sdsm");
-    t->Configure(device(), tech::ParamValues::Parse("sdsm", t->Params(), params));
-    return std::make_unique<tech::Renderer>(device(), s, std::move(t), w, h, tech::RendererOptions{});
+    return MakeTechniqueRenderer(device(), "sdsm", s, w, h, params);
   }
   static SdsmTechnique& Sdsm(tech::Renderer& r) { return static_cast<SdsmTechnique&>(r.technique()); }
 };

@@ -9,6 +9,7 @@
 #include <cstdio>
 
 #include "backend-test.h"
+#include "technique-renderer.h"
 #include "bench.h"
 #include "floating-box.h"
 #include <sp/tech/renderer.h>
@@ -35,12 +36,8 @@ bool IsPowerOfTwo(float x) {
 class SdsmTechniqueTest : public BackendTest {
  protected:
   std::unique_ptr<tech::Renderer> MakeRenderer(const scene::Scene& s, uint32_t w, uint32_t h, Params params, bool lab = false) {
-    std::unique_ptr<tech::Technique> t = tech::CreateTechnique("sdsm");
     if (!params.count("resolution")) params["resolution"] = "512";
-    t->Configure(device(), tech::ParamValues::Parse("sdsm", t->Params(), params));
-    tech::RendererOptions o;
-    o.lab = lab;
-    return std::make_unique<tech::Renderer>(device(), s, std::move(t), w, h, o);
+    return MakeTechniqueRenderer(device(), "sdsm", s, w, h, params, LabOptions(lab));
   }
   static SdsmTechnique& Sdsm(tech::Renderer& r) { return static_cast<SdsmTechnique&>(r.technique()); }
   std::vector<PartitionFit> Fits(tech::Renderer& r) {

@@ -11,6 +11,7 @@
 #include <glm/glm.hpp>
 
 #include "backend-test.h"
+#include "technique-renderer.h"
 #include "floating-box.h"
 #include <sp/tech/renderer.h>
 #include <sp/tech/shaft-counters.h>
@@ -26,9 +27,7 @@ class ShaftsTest : public BackendTest {
  protected:
   std::unique_ptr<tech::Renderer> Render(const scene::Scene& s, std::map<std::string, std::string> params) {
     params.emplace("resolution", "256");
-    std::unique_ptr<tech::Technique> t = tech::CreateTechnique("basic");
-    t->Configure(device(), tech::ParamValues::Parse("basic", t->Params(), params));
-    auto r = std::make_unique<tech::Renderer>(device(), s, std::move(t), W, H);
+    auto r = MakeTechniqueRenderer(device(), "basic", s, W, H, params);
     r->RenderFrame(s.camera, s.light);
     return r;
   }

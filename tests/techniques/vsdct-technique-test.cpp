@@ -7,6 +7,7 @@
 #include <array>
 
 #include "backend-test.h"
+#include "technique-renderer.h"
 #include "cross-backend.h"
 #include "cube-room.h"
 #include "cube/cube-faces.h"
@@ -18,9 +19,7 @@ namespace {
 class VsdctTechniqueTest : public BackendTest {
  public:
   std::unique_ptr<tech::Renderer> MakeRenderer(const scene::Scene& s, uint32_t w, uint32_t h, const std::map<std::string, std::string>& params) {
-    std::unique_ptr<tech::Technique> t = tech::CreateTechnique("vsdct");
-    t->Configure(device(), tech::ParamValues::Parse("vsdct", t->Params(), params));
-    return std::make_unique<tech::Renderer>(device(), s, std::move(t), w, h);
+    return MakeTechniqueRenderer(device(), "vsdct", s, w, h, params);
   }
 
   // cube's room test; a kernel's taps reach its half width plus the bilinear texel, and points

@@ -7,6 +7,7 @@
 #include <glm/ext/matrix_transform.hpp>
 
 #include "backend-test.h"
+#include "technique-renderer.h"
 #include "cross-backend.h"
 #include "floating-box.h"
 #include "warps/warp-technique.h"
@@ -24,11 +25,7 @@ class WarpTechniqueTest : public BackendTest {
   std::unique_ptr<tech::Renderer> MakeRenderer(const std::string& name, const scene::Scene& s, uint32_t w, uint32_t h,
                                                std::map<std::string, std::string> params, bool lab = false) {
     params.emplace("resolution", "512");
-    std::unique_ptr<tech::Technique> t = tech::CreateTechnique(name);
-    t->Configure(device(), tech::ParamValues::Parse(name, t->Params(), params));
-    tech::RendererOptions o;
-    o.lab = lab;
-    return std::make_unique<tech::Renderer>(device(), s, std::move(t), w, h, o);
+    return MakeTechniqueRenderer(device(), name, s, w, h, params, LabOptions(lab));
   }
   static WarpTechnique& Warp(tech::Renderer& r) { return static_cast<WarpTechnique&>(r.technique()); }
 };
