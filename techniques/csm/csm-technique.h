@@ -83,6 +83,7 @@ class CsmTechnique final : public Technique, public HpsmCounterSource {
   void BindLighting(DeviceContext& ctx) override;
   ShadowStats Stats() const override;
   std::vector<ShadowLayer> Layers() const override;
+  Texture2D* ShadowMapTexture() const override { return map_.get(); }
   HpsmCounts HpsmDecisions() const override;
 
   // For tests and debug views.

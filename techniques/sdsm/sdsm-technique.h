@@ -79,6 +79,7 @@ class SdsmTechnique final : public Technique, public HpsmCounterSource {
   ShadowStats Stats() const override;
   HpsmCounts HpsmDecisions() const override;
   std::vector<ShadowLayer> Layers() const override;
+  Texture2D* ShadowMapTexture() const override { return map_.get(); }
 
   // For tests and debug views.
   const SdsmSettings& settings() const { return settings_; }
