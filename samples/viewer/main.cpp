@@ -8,7 +8,8 @@
 // Mouse: left drag looks around, right drag turns the sun. Keys: W A S D move, Q E down/up,
 // Shift faster; 1-9 pick a technique; Tab picks a parameter, [ and ] step it; F1 shows or hides
 // the panel; R starts or stops recording the camera path; C, T, M toggle the layer colours, the
-// texel-density heat map, the shadow-map view; H traces the error heat map of this frame (slow);
+// texel-density heat map, the shadow-map view; H traces the error heat map of this frame (slow)
+// or hides it;
 // F12 saves a screenshot; Esc quits. (overlay-view.h: what each overlay shows and costs.)
 // With --frames N the viewer renders the scene's own camera and light N times, saves what the
 // window shows to --screenshot and exits: the same picture as `shadowport render` with the same
@@ -259,7 +260,8 @@ class Viewer {
     overlays_->Set(o);
     if (overlays_->NeedsLabRenderer() && !labRenderer_) Rebuild();
   }
-  void ToggleOverlay(sp::viewer::Overlay o) { SetOverlay(overlays_->overlay() == o && o != sp::viewer::Overlay::Error ? sp::viewer::Overlay::Off : o); }
+  // H while a heat map shows hides it; once it was dropped (the view changed) H traces again.
+  void ToggleOverlay(sp::viewer::Overlay o) { SetOverlay(overlays_->overlay() == o ? sp::viewer::Overlay::Off : o); }
 
   // The last frame's lab buffers as PNGs (colour, and layer + 1 as grey, 0 where no map was read),
   // so a checker can compute the layer colours the window must show from them.
@@ -288,7 +290,7 @@ class Viewer {
     if (key == GLFW_KEY_C) ToggleOverlay(sp::viewer::Overlay::Layers);
     if (key == GLFW_KEY_T) ToggleOverlay(sp::viewer::Overlay::Density);
     if (key == GLFW_KEY_M) ToggleOverlay(sp::viewer::Overlay::ShadowMap);
-    if (key == GLFW_KEY_H) ToggleOverlay(sp::viewer::Overlay::Error);  // traces again each time
+    if (key == GLFW_KEY_H) ToggleOverlay(sp::viewer::Overlay::Error);
     if (key == GLFW_KEY_ESCAPE) glfwSetWindowShouldClose(window_, GLFW_TRUE);
     if (key >= GLFW_KEY_1 && key <= GLFW_KEY_9 && size_t(key - GLFW_KEY_1) < techniques_.size()) {
       technique_ = techniques_[size_t(key - GLFW_KEY_1)];
