@@ -114,10 +114,13 @@ void OverlayView::Draw(DeviceContext& ctx, tech::Renderer& renderer, Texture2D* 
       MapImage map;
       if (why.empty() && ReadMap(ctx, renderer.technique().ShadowMapTexture(), &map)) {
         note_ = std::to_string(map.layers) + " layer(s) of " + std::to_string(map.width) + "x" + std::to_string(map.height) +
-                ", grey = depth (first channel) scaled per layer from its nearest to its farthest drawn texel";
+                (map.depth ? ", grey = depth, scaled per layer from its nearest to its farthest drawn texel (white: nothing drawn)"
+                           : ", grey = the first channel (a moment map's first moment), scaled per layer over its range");
         Upload(ctx, target, TileShadowMap(map, w, h), w, h);
       } else {
-        note_ = "no map view: " + (why.empty() ? std::string("its map's format is not one the view reads") : why);
+        std::string note = "no map view: " + (why.empty() ? std::string("its map's format is not one the view reads") : why);
+        if (note != note_) std::printf("viewer: %s\n", note.c_str());  // once, not every frame
+        note_ = note;
       }
       return;
     }
@@ -154,6 +157,7 @@ bool OverlayView::ReadMap(DeviceContext& ctx, Texture2D* map, MapImage* out) {
   }
   ctx.CopyResource(mapStaging_.get(), map);
   out->width = d.Width, out->height = d.Height, out->layers = d.ArraySize;
+  out->depth = (d.BindFlags & BIND_DEPTH_STENCIL) != 0;
   out->values.resize(size_t(d.Width) * d.Height * d.ArraySize);
   float* o = out->values.data();
   for (uint32_t s = 0; s < d.ArraySize; ++s) {

@@ -95,6 +95,22 @@ TEST(ViewerOverlay, ShadowMapLayersAreTiledAsScaledGrey) {
   EXPECT_EQ(grey(7, 4), 0) << "no fourth layer";
   EXPECT_EQ(grey(3, 1), 0) << "below the one-texel-high tile";
 
+  // A moment map (not depth): values above 1 are part of the range, not "nothing drawn".
+  MapImage moments;
+  moments.width = 2, moments.height = 1, moments.layers = 1, moments.depth = false;
+  moments.values = {1.0f, 3.0f};  // an exponential moment: exp(c z) >= 1
+  out = viewer::TileShadowMap(moments, 8, 4);  // one 8x4 cell: each texel 4x4 pixels
+  EXPECT_EQ(grey(3, 3), 0);
+  EXPECT_EQ(grey(4, 0), 255);
+  EXPECT_EQ(grey(7, 3), 255);
+  // Exponential moments over four orders of magnitude: a log scale; the largest is "nothing drawn".
+  moments.width = 4, moments.values = {1.0f, 10.0f, 10000.0f, 1e6f};
+  out = viewer::TileShadowMap(moments, 8, 2);  // texels 2x2 pixels
+  EXPECT_EQ(grey(0, 0), 0);
+  EXPECT_EQ(grey(2, 1), 64);  // log 10 a quarter of the way from log 1 to log 10000: 63.75
+  EXPECT_EQ(grey(4, 0), 255);
+  EXPECT_EQ(grey(6, 1), 255);
+
   // A picture of the wrong size of values is all black, not a read past the end.
   m.values.pop_back();
   out = viewer::TileShadowMap(m, 8, 4);

@@ -60,9 +60,19 @@ std::vector<uint8_t> TileShadowMap(const MapImage& map, uint32_t width, uint32_t
   const size_t slice = size_t(map.width) * map.height;
   for (uint32_t l = 0; l < map.layers; ++l) {
     const float* v = &map.values[l * slice];
+    // "Nothing drawn": depth 1, or a moment map's largest value (what depth 1 becomes).
+    float top = 1.0f;
+    if (!map.depth) {
+      top = std::numeric_limits<float>::lowest();
+      for (size_t i = 0; i < slice; ++i)
+        if (std::isfinite(v[i])) top = std::max(top, v[i]);
+    }
     float lo = std::numeric_limits<float>::max(), hi = std::numeric_limits<float>::lowest();
     for (size_t i = 0; i < slice; ++i)
-      if (std::isfinite(v[i]) && v[i] < 1.0f) lo = std::min(lo, v[i]), hi = std::max(hi, v[i]);
+      if (std::isfinite(v[i]) && v[i] < top) lo = std::min(lo, v[i]), hi = std::max(hi, v[i]);
+    // ESM's and EVSM's exp(c z) span orders of magnitude: shown on a log scale.
+    const bool logScale = !map.depth && lo > 0.0f && hi > 100.0f * lo;
+    auto f = [&](double x) { return logScale ? std::log(x) : x; };
     const uint32_t x0 = uint32_t((l % cols) * cellW), y0 = uint32_t((l / cols) * cellH);
     for (uint32_t y = 0; y < tileH && y0 + y < height; ++y)
       for (uint32_t x = 0; x < tileW && x0 + x < width; ++x) {
@@ -70,7 +80,7 @@ std::vector<uint8_t> TileShadowMap(const MapImage& map, uint32_t width, uint32_t
         float d = v[size_t(ty) * map.width + tx];
         uint8_t g = 255;
         if (!std::isfinite(d)) g = 0;
-        else if (d < 1.0f) g = uint8_t(std::lround(hi > lo ? 255.0 * (double(d) - lo) / (double(hi) - lo) : 0.0));
+        else if (d < top) g = uint8_t(std::lround(hi > lo ? 255.0 * (f(d) - f(lo)) / (f(hi) - f(lo)) : 0.0));
         uint8_t* p = &out[(size_t(y0 + y) * width + x0 + x) * 4];
         p[0] = p[1] = p[2] = g;
       }

@@ -33,11 +33,16 @@ std::vector<uint8_t> ComposeLayerColours(const tech::LabBuffers& lab);
 struct MapImage {
   uint32_t width = 0, height = 0, layers = 0;
   std::vector<float> values;  // slice by slice, row by row from the top
+  // A depth map, where 1 is the clear value (nothing drawn); false: moments (ESM's and EVSM's
+  // exponentials exceed 1), where every finite value counts.
+  bool depth = true;
 };
 // The slices tiled in a grid of columns = ceil(sqrt(layers)) over a width x height picture (each
-// tile the largest square-texel fit, nearest texel, black around), as grey: per slice, the range
-// [min, max] of its finite values < 1 (depth 1 = nothing drawn) maps to [0, 255] and values >= 1
-// are white, so a map of a small scene still shows contrast. RGBA8 (sRGB bytes), alpha 255.
+// tile the largest square-texel fit, nearest texel, black around), as grey: per slice, values at
+// or above "nothing drawn" (depth: 1; moments: the slice's largest value) are white and the range
+// [min, max] of the others maps to [0, 255] (on a log scale for moments spanning more than 100x,
+// ESM's and EVSM's exponentials), so a map of a small scene still shows contrast. Non-finite values
+// are black. RGBA8 (sRGB bytes), alpha 255.
 std::vector<uint8_t> TileShadowMap(const MapImage& map, uint32_t width, uint32_t height);
 
 }  // namespace sp::viewer
