@@ -9,8 +9,7 @@
 // Shift faster; 1-9 pick a technique; Tab picks a parameter, [ and ] step it; F1 shows or hides
 // the panel; R starts or stops recording the camera path; C, T, M toggle the layer colours, the
 // texel-density heat map, the shadow-map view; H traces the error heat map of this frame (slow)
-// or hides it;
-// F12 saves a screenshot; Esc quits. (overlay-view.h: what each overlay shows and costs.)
+// or hides it; F12 saves a screenshot; Esc quits. (Overlays: docs/viewer.md, overlay-view.h.)
 // With --frames N the viewer renders the scene's own camera and light N times, saves what the
 // window shows to --screenshot and exits: the same picture as `shadowport render` with the same
 // scene, technique, parameters and size (the panel is off unless --ui asks for it).
@@ -228,7 +227,15 @@ class Viewer {
     renderer_->RenderFrame(camera_->camera(), light_, overlays_->NeedsLabPass() ? sp::tech::LitPass::Lab : sp::tech::LitPass::Normal);
     sp::DeviceContext* ctx = device_->GetImmediateContext();
     ctx->CopyResource(swapChain_->GetBuffer(0), renderer_->colorTarget());
-    overlays_->Draw(*ctx, *renderer_, swapChain_->GetBuffer(0), light_, ViewKey());
+    try {
+      overlays_->Draw(*ctx, *renderer_, swapChain_->GetBuffer(0), light_, ViewKey());
+    } catch (const std::exception& e) {
+      // An overlay that cannot be made (a scene the tracer refuses, ...) is reported and turned
+      // off; the viewer goes on with the plain frame.
+      std::fprintf(stderr, "viewer: the %s overlay failed: %s\n", sp::viewer::OverlayName(overlays_->overlay()), e.what());
+      overlays_->Set(sp::viewer::Overlay::Off);
+      ctx->CopyResource(swapChain_->GetBuffer(0), renderer_->colorTarget());
+    }
     if (ui_) DrawUi(*ctx);
     swapChain_->Present(opt_.sync);
   }
