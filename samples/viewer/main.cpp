@@ -2,11 +2,14 @@
 //
 //   viewer [--backend vulkan|gl] [--scene NAME|file.gltf] [--technique NAME] [--param k=v]...
 //          [--size WxH] [--sync 0|1] [--validate] [--frames N --screenshot out.png] [--ui]
-//          [--record FILE.json] [--replay FILE.json]
+//          [--record FILE.json] [--replay FILE.json] [--overlay layers|density|error|shadowmap]
+//          [--dump-lab PREFIX]
 //
 // Mouse: left drag looks around, right drag turns the sun. Keys: W A S D move, Q E down/up,
 // Shift faster; 1-9 pick a technique; Tab picks a parameter, [ and ] step it; F1 shows or hides
-// the panel; R starts or stops recording the camera path; F12 saves a screenshot; Esc quits.
+// the panel; R starts or stops recording the camera path; C, T, M toggle the layer colours, the
+// texel-density heat map, the shadow-map view; H traces the error heat map of this frame (slow)
+// or hides it; F12 saves a screenshot; Esc quits. (Overlays: docs/viewer.md, overlay-view.h.)
 // With --frames N the viewer renders the scene's own camera and light N times, saves what the
 // window shows to --screenshot and exits: the same picture as `shadowport render` with the same
 // scene, technique, parameters and size (the panel is off unless --ui asks for it).
@@ -30,6 +33,7 @@
 
 #include "fly-camera.h"
 #include "imgui-renderer.h"
+#include "overlay-view.h"
 #include "panel.h"
 
 #define GLFW_INCLUDE_NONE
@@ -63,12 +67,14 @@ struct Options {
   bool ui = false;      // the panel in --frames mode (interactively it is on anyway)
   std::string record;   // where a recorded path goes (default viewer-path-<N>.json)
   std::string replay;   // a recorded path to fly instead of the fly camera
+  sp::viewer::Overlay overlay = sp::viewer::Overlay::Off;
+  std::string dumpLab;  // with --frames: the last frame's lab colour and layers as PNGs (tests)
 };
 
 [[noreturn]] void Usage(const std::string& why) {
   throw std::invalid_argument(why + "\nusage: viewer [--backend vulkan|gl] [--scene NAME|file.gltf] [--technique NAME] [--param k=v]... "
                                     "[--size WxH] [--sync 0|1] [--validate] [--frames N --screenshot out.png] [--ui] "
-                                    "[--record FILE.json] [--replay FILE.json]");
+                                    "[--record FILE.json] [--replay FILE.json] [--overlay layers|density|error|shadowmap] [--dump-lab PREFIX]");
 }
 
 Options ParseOptions(int argc, char** argv) {
@@ -109,11 +115,19 @@ Options ParseOptions(int argc, char** argv) {
       o.record = value();
     } else if (a == "--replay") {
       o.replay = value();
+    } else if (a == "--overlay") {
+      std::string v = value();
+      if (!sp::viewer::ParseOverlay(v, &o.overlay)) Usage("--overlay '" + v + "': none, layers, density, error or shadowmap");
+    } else if (a == "--dump-lab") {
+      o.dumpLab = value();
     } else {
       Usage("unknown option " + a);
     }
   }
   if (o.frames > 0 && o.screenshot.empty()) Usage("--frames needs --screenshot out.png");
+  if (!o.dumpLab.empty() && (o.frames == 0 || (o.overlay != sp::viewer::Overlay::Layers && o.overlay != sp::viewer::Overlay::Density &&
+                                                o.overlay != sp::viewer::Overlay::Error)))
+    Usage("--dump-lab needs --frames and --overlay layers, density or error (the overlays that read the lab's buffers)");
   return o;
 }
 
@@ -169,6 +183,8 @@ class Viewer {
     sd.syncInterval = o.sync;
     swapChain_ = sp::CreateSwapChain(*device_, sd);
     if (!o.replay.empty()) replay_ = sp::scene::LoadCameraPath(o.replay);
+    overlays_ = std::make_unique<sp::viewer::OverlayView>(*device_, scene_);
+    overlays_->Set(o.overlay);
     Rebuild();
   }
 
@@ -179,6 +195,7 @@ class Viewer {
       ImGui::DestroyContext();
     }
     renderer_.reset();
+    overlays_.reset();
     swapChain_.reset();  // before the device, as DXGI wants its swap chain released first
   }
 
@@ -207,9 +224,18 @@ class Viewer {
     }
     if (replay_) Replay(seconds);
     if (recording_) recorder_.add(seconds, camera_->camera(), light_.direction);
-    renderer_->RenderFrame(camera_->camera(), light_);
+    renderer_->RenderFrame(camera_->camera(), light_, overlays_->NeedsLabPass() ? sp::tech::LitPass::Lab : sp::tech::LitPass::Normal);
     sp::DeviceContext* ctx = device_->GetImmediateContext();
     ctx->CopyResource(swapChain_->GetBuffer(0), renderer_->colorTarget());
+    try {
+      overlays_->Draw(*ctx, *renderer_, swapChain_->GetBuffer(0), light_, ViewKey());
+    } catch (const std::exception& e) {
+      // An overlay that cannot be made (a scene the tracer refuses, ...) is reported and turned
+      // off; the viewer goes on with the plain frame.
+      std::fprintf(stderr, "viewer: the %s overlay failed: %s\n", sp::viewer::OverlayName(overlays_->overlay()), e.what());
+      overlays_->Set(sp::viewer::Overlay::Off);
+      ctx->CopyResource(swapChain_->GetBuffer(0), renderer_->colorTarget());
+    }
     if (ui_) DrawUi(*ctx);
     swapChain_->Present(opt_.sync);
   }
@@ -235,6 +261,26 @@ class Viewer {
   }
   bool Recording() const { return recording_; }
 
+  // C, T, M, H and the panel: one overlay at a time; the renderer gets the lab's lit pass the
+  // first time an overlay needs it (and keeps it: its normal pass is unchanged by it).
+  void SetOverlay(sp::viewer::Overlay o) {
+    overlays_->Set(o);
+    if (overlays_->NeedsLabRenderer() && !labRenderer_) Rebuild();
+  }
+  // H while a heat map shows hides it; once it was dropped (the view changed) H traces again.
+  void ToggleOverlay(sp::viewer::Overlay o) { SetOverlay(overlays_->overlay() == o ? sp::viewer::Overlay::Off : o); }
+
+  // The last frame's lab buffers as PNGs (colour, and layer + 1 as grey, 0 where no map was read),
+  // so a checker can compute the layer colours the window must show from them.
+  void DumpLab(const std::string& prefix) {
+    const sp::tech::LabBuffers* lab = overlays_->lastLab();
+    if (!lab) throw std::runtime_error("--dump-lab: no frame read the lab's buffers");
+    std::vector<uint8_t> layers(lab->size() * 4, 255);
+    for (size_t i = 0; i < lab->size(); ++i) layers[i * 4] = layers[i * 4 + 1] = layers[i * 4 + 2] = uint8_t(sp::viewer::LayerOf(*lab, i) + 1);
+    WritePng(prefix + "-color.png", lab->width, lab->height, lab->color);
+    WritePng(prefix + "-layer.png", lab->width, lab->height, layers);
+  }
+
   void Screenshot(const std::string& path) {
     WritePng(path, uint32_t(width_), uint32_t(height_),
              WindowPixels(glfwGetX11Display(), glfwGetX11Window(window_), uint32_t(width_), uint32_t(height_)));
@@ -248,6 +294,10 @@ class Viewer {
     // Typing into the panel's text field is not a command to the viewer.
     if (ui_ && showUi_ && ImGui::GetIO().WantCaptureKeyboard) return;
     if (key == GLFW_KEY_R) ToggleRecording();
+    if (key == GLFW_KEY_C) ToggleOverlay(sp::viewer::Overlay::Layers);
+    if (key == GLFW_KEY_T) ToggleOverlay(sp::viewer::Overlay::Density);
+    if (key == GLFW_KEY_M) ToggleOverlay(sp::viewer::Overlay::ShadowMap);
+    if (key == GLFW_KEY_H) ToggleOverlay(sp::viewer::Overlay::Error);
     if (key == GLFW_KEY_ESCAPE) glfwSetWindowShouldClose(window_, GLFW_TRUE);
     if (key >= GLFW_KEY_1 && key <= GLFW_KEY_9 && size_t(key - GLFW_KEY_1) < techniques_.size()) {
       technique_ = techniques_[size_t(key - GLFW_KEY_1)];
@@ -309,7 +359,14 @@ class Viewer {
       st.values = params_;
       for (const auto& [name, value] : pending_) st.values[name] = value;
       st.gpuMs = gpuMs_;
-      st.offerOverlays = false;  // cascade colours, shadow-map view and heat map are not wired yet
+      st.offerOverlays = true;
+      st.noShadowMap = sp::viewer::OverlayView::NoShadowMap(renderer_->technique());
+      st.noHeatMaps = sp::viewer::OverlayView::NoHeatMaps();
+      st.cascadeColours = overlays_->overlay() == sp::viewer::Overlay::Layers;
+      st.texelDensity = overlays_->overlay() == sp::viewer::Overlay::Density;
+      st.showShadowMap = overlays_->overlay() == sp::viewer::Overlay::ShadowMap;
+      st.errorHeatMap = overlays_->overlay() == sp::viewer::Overlay::Error;
+      st.overlayNote = overlays_->note();
       st.recordingPath = recording_;
       st.recordedKeys = recorder_.size();
       Apply(sp::viewer::DrawPanel(st));
@@ -329,6 +386,10 @@ class Viewer {
       return;
     }
     if (c.recordingPath && *c.recordingPath != recording_) ToggleRecording();
+    using sp::viewer::Overlay;
+    for (auto [flag, o] : {std::pair{c.cascadeColours, Overlay::Layers}, std::pair{c.texelDensity, Overlay::Density},
+                           std::pair{c.showShadowMap, Overlay::ShadowMap}, std::pair{c.errorHeatMap, Overlay::Error}})
+      if (flag) SetOverlay(*flag ? o : Overlay::Off);
     if (c.savePath && recording_) ToggleRecording();
     for (const auto& [name, value] : c.params) pending_[name] = value;
     // A slider reports every step of a drag; reconfiguring (new shadow maps, new shaders) on each
@@ -359,9 +420,23 @@ class Viewer {
     sp::tech::ParamValues values = sp::tech::ParamValues::Parse(technique_, specs_, params_);
     params_ = values.all();
     t->Configure(*device_, values);
-    renderer_ = std::make_unique<sp::tech::Renderer>(*device_, scene_, std::move(t), uint32_t(width_), uint32_t(height_));
+    sp::tech::RendererOptions ro;
+    ro.lab = labRenderer_ = labRenderer_ || overlays_->NeedsLabRenderer();
+    renderer_ = std::make_unique<sp::tech::Renderer>(*device_, scene_, std::move(t), uint32_t(width_), uint32_t(height_), ro);
     renderer_->SetGpuTimer(timer_.get());
     Describe();
+  }
+
+  // Everything an error heat map depends on: it is dropped when any of it changes.
+  std::string ViewKey() const {
+    const sp::scene::Camera& c = camera_->camera();
+    char text[256];
+    std::snprintf(text, sizeof text, "%a %a %a|%a %a %a|%a %a %a|%a|%a %a %a|%dx%d|", c.position.x, c.position.y, c.position.z, c.target.x,
+                  c.target.y, c.target.z, c.up.x, c.up.y, c.up.z, c.fovY, light_.direction.x, light_.direction.y, light_.direction.z,
+                  width_, height_);
+    std::string key = text + technique_;
+    for (const auto& [name, value] : params_) key += "|" + name + "=" + value;
+    return key;
   }
 
   void Step(int direction) {
@@ -410,6 +485,8 @@ class Viewer {
   size_t param_ = 0;
   std::unique_ptr<sp::SwapChain> swapChain_;
   std::unique_ptr<sp::tech::Renderer> renderer_;
+  std::unique_ptr<sp::viewer::OverlayView> overlays_;
+  bool labRenderer_ = false;  // renderer_ was built with RendererOptions::lab
   int width_ = 0, height_ = 0;
   double mouseX_ = 0, mouseY_ = 0;
   int screenshots_ = 0;
@@ -451,6 +528,7 @@ int Run(const Options& o) {
       }
       if (v.Recording()) v.ToggleRecording();
       v.Screenshot(o.screenshot);
+      if (!o.dumpLab.empty()) v.DumpLab(o.dumpLab);
     } else {
       auto start = std::chrono::steady_clock::now(), last = start;
       while (!glfwWindowShouldClose(window)) {

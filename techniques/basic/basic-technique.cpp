@@ -131,6 +131,7 @@ class BasicTechnique final : public Technique, public HpsmCounterSource, public 
     return {w[5], w[6]};  // kShaftLookedUp, kShaftSkipped
   }
   std::vector<ShadowLayer> Layers() const override { return {{resolution_, resolution_}}; }
+  Texture2D* ShadowMapTexture() const override { return map_.texture.get(); }
 
  private:
   // shafts, shaft_steps, shaft_density, shaft_accel; maps_: the secondary map's settings, accel's

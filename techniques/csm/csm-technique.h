@@ -83,6 +83,8 @@ class CsmTechnique final : public Technique, public HpsmCounterSource {
   void BindLighting(DeviceContext& ctx) override;
   ShadowStats Stats() const override;
   std::vector<ShadowLayer> Layers() const override;
+  // With a moment filter, the moments the lit pass reads (mip 0), else the depth array.
+  Texture2D* ShadowMapTexture() const override { return moments_ ? moments_->Texture() : map_.get(); }
   HpsmCounts HpsmDecisions() const override;
 
   // For tests and debug views.

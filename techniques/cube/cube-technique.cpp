@@ -213,6 +213,8 @@ class CubeTechnique final : public Technique, public HpsmCounterSource {
     uint32_t r = labSlot_ < slotCount_ ? slots_[labSlot_].resolution : resolution_;
     return std::vector<ShadowLayer>(6, {r, r});
   }
+  // The judged light's cube (its six faces as slices), what Layers() describes.
+  Texture2D* ShadowMapTexture() const override { return labSlot_ < slotCount_ ? slots_[labSlot_].cube.get() : nullptr; }
   int LabLocalLight(const scene::Scene&) const override { return int(light_); }  // point lights come first
 
  private:

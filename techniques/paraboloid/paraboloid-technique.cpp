@@ -125,6 +125,7 @@ class ParaboloidTechnique final : public Technique {
 
   ShadowStats Stats() const override { return {uint64_t(resolution_) * resolution_ * 4 * 2, trianglesSubmitted_}; }
   std::vector<ShadowLayer> Layers() const override { return std::vector<ShadowLayer>(2, {resolution_, resolution_}); }
+  Texture2D* ShadowMapTexture() const override { return maps_.get(); }
   int LabLocalLight(const scene::Scene&) const override { return int(light_); }  // point lights come first
 
  private:

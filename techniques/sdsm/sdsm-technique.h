@@ -79,6 +79,8 @@ class SdsmTechnique final : public Technique, public HpsmCounterSource {
   ShadowStats Stats() const override;
   HpsmCounts HpsmDecisions() const override;
   std::vector<ShadowLayer> Layers() const override;
+  // With a moment filter, the moments the lit pass reads (mip 0), else the depth array.
+  Texture2D* ShadowMapTexture() const override { return moments_ ? moments_->Texture() : map_.get(); }
 
   // For tests and debug views.
   const SdsmSettings& settings() const { return settings_; }

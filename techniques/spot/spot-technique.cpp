@@ -127,6 +127,7 @@ class SpotTechnique final : public Technique, public HpsmCounterSource {
   }
   HpsmCounts HpsmDecisions() const override { return hpsmMaps_ ? hpsmMaps_->ReadCounters(*device_->GetImmediateContext()) : HpsmCounts{}; }
   std::vector<ShadowLayer> Layers() const override { return {{resolution_, resolution_}}; }
+  Texture2D* ShadowMapTexture() const override { return map_.texture.get(); }
   int LabLocalLight(const scene::Scene& scene) const override { return int(scene.pointLights.size() + light_); }
 
  private:

@@ -193,6 +193,7 @@ class VsdctTechnique final : public Technique {
   // The lab's layers are the faces, texels within the face's R x R (the guard band is not a
   // face's own area: its texels duplicate the neighbours'), as cube reports them.
   std::vector<ShadowLayer> Layers() const override { return std::vector<ShadowLayer>(6, {resolution_, resolution_}); }
+  Texture2D* ShadowMapTexture() const override { return atlas_.get(); }  // the six faces' tiles in one slice
   int LabLocalLight(const scene::Scene&) const override { return int(light_); }  // point lights come first
 
  private:

@@ -65,6 +65,7 @@ class WarpTechnique final : public Technique {
   void BindLighting(DeviceContext& ctx) override;
   ShadowStats Stats() const override;
   std::vector<ShadowLayer> Layers() const override;
+  Texture2D* ShadowMapTexture() const override { return map_.get(); }
 
   // For tests and the lab.
   const WarpSettings& settings() const { return settings_; }

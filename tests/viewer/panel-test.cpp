@@ -44,6 +44,7 @@ class PanelTest : public ::testing::Test {
     if (c.technique) into.technique = c.technique;
     for (const auto& [k, v] : c.params) into.params[k] = v;
     if (c.cascadeColours) into.cascadeColours = c.cascadeColours;
+    if (c.texelDensity) into.texelDensity = c.texelDensity;
     if (c.showShadowMap) into.showShadowMap = c.showShadowMap;
     if (c.errorHeatMap) into.errorHeatMap = c.errorHeatMap;
     if (c.recordingPath) into.recordingPath = c.recordingPath;
@@ -82,7 +83,7 @@ TEST_F(PanelTest, NoInputChangesNothing) {
   // A click far from the panel is the viewer's, not the panel's.
   EXPECT_FALSE(ClickAt(s, ImVec2(700, 550)).any());
   for (const char* w : {"technique", "resolution", "filter", "slope_bias", "splits", "cascade colours", "show shadow map",
-                        "error heat map (traces the reference)", "record camera path", "save path"})
+                        "texel density", "error heat map (traces the reference)", "record camera path", "save path"})
     EXPECT_TRUE(layout_.count(w)) << w;
 }
 
@@ -92,7 +93,7 @@ TEST_F(PanelTest, ClickingAToggleReportsItAlone) {
   PanelChanges c = Click(s, "cascade colours", 0.05f);
   ASSERT_TRUE(c.cascadeColours.has_value());
   EXPECT_TRUE(*c.cascadeColours);
-  EXPECT_FALSE(c.showShadowMap || c.errorHeatMap || c.technique || c.recordingPath || c.savePath);
+  EXPECT_FALSE(c.showShadowMap || c.texelDensity || c.errorHeatMap || c.technique || c.recordingPath || c.savePath);
   EXPECT_TRUE(c.params.empty());
   // The viewer applied it: clicking again turns it off.
   s.cascadeColours = true;
@@ -102,6 +103,21 @@ TEST_F(PanelTest, ClickingAToggleReportsItAlone) {
   c = Click(s, "error heat map (traces the reference)", 0.05f);
   EXPECT_EQ(c.errorHeatMap, std::optional<bool>(true));
   EXPECT_FALSE(c.cascadeColours.has_value());
+}
+
+// An overlay the viewer cannot show is named with its reason instead of a toggle that does nothing.
+TEST_F(PanelTest, UnavailableOverlaysAreNotOffered) {
+  PanelState s = State();
+  s.noShadowMap = "psm exposes no shadow-map texture";
+  s.noHeatMaps = "built without the lab";
+  Frame(s, ImVec2(-1, -1), false);
+  EXPECT_TRUE(layout_.count("cascade colours"));
+  for (const char* w : {"show shadow map", "texel density", "error heat map (traces the reference)"}) EXPECT_FALSE(layout_.count(w)) << w;
+  s = State();
+  Frame(s, ImVec2(-1, -1), false);
+  PanelChanges c = Click(s, "texel density", 0.05f);
+  EXPECT_EQ(c.texelDensity, std::optional<bool>(true));
+  EXPECT_FALSE(c.cascadeColours || c.showShadowMap || c.errorHeatMap);
 }
 
 TEST_F(PanelTest, PickingATechniqueAndAChoiceReportsThem) {

@@ -120,8 +120,17 @@ PanelChanges DrawPanel(const PanelState& s, PanelLayout* layout, ImVec2 pos) {
 
   if (s.offerOverlays && ImGui::CollapsingHeader("show", ImGuiTreeNodeFlags_DefaultOpen)) {
     c.cascadeColours = d.checkbox("cascade colours", s.cascadeColours);
-    c.showShadowMap = d.checkbox("show shadow map", s.showShadowMap);
-    c.errorHeatMap = d.checkbox("error heat map (traces the reference)", s.errorHeatMap);
+    if (s.noShadowMap.empty())
+      c.showShadowMap = d.checkbox("show shadow map", s.showShadowMap);
+    else
+      ImGui::TextDisabled("no map view: %s", s.noShadowMap.c_str());
+    if (s.noHeatMaps.empty()) {
+      c.texelDensity = d.checkbox("texel density", s.texelDensity);
+      c.errorHeatMap = d.checkbox("error heat map (traces the reference)", s.errorHeatMap);
+    } else {
+      ImGui::TextDisabled("no heat maps: %s", s.noHeatMaps.c_str());
+    }
+    if (!s.overlayNote.empty()) ImGui::TextWrapped("%s", s.overlayNote.c_str());
   }
 
   if (!s.gpuMs.empty() && ImGui::CollapsingHeader("GPU time per pass", ImGuiTreeNodeFlags_DefaultOpen)) {

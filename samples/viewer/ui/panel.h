@@ -26,9 +26,14 @@ struct PanelState {
   // Whether the viewer can do the overlays below: the toggles are drawn only when it can, so the
   // panel shows no button that does nothing. (The panel's tests draw them all.)
   bool offerOverlays = true;
+  // Overlays this build or technique cannot show are named with the reason instead of a toggle:
+  // the shadow-map view needs Technique::ShadowMapTexture(), the heat maps need the lab (eval/).
+  std::string noShadowMap, noHeatMaps;  // empty: offered
   bool cascadeColours = false;
+  bool texelDensity = false;
   bool showShadowMap = false;
   bool errorHeatMap = false;  // traces the reference for the current frame: slow, on demand
+  std::string overlayNote;    // what the overlay shows now (trace time, misclassified, stale)
   bool recordingPath = false;
   size_t recordedKeys = 0;
 };
@@ -36,11 +41,11 @@ struct PanelState {
 struct PanelChanges {
   std::optional<int> technique;
   std::map<std::string, std::string> params;  // name -> new value text, only those changed
-  std::optional<bool> cascadeColours, showShadowMap, errorHeatMap, recordingPath;
+  std::optional<bool> cascadeColours, texelDensity, showShadowMap, errorHeatMap, recordingPath;
   bool savePath = false;  // "save path" was pressed
 
   bool any() const {
-    return technique || !params.empty() || cascadeColours || showShadowMap || errorHeatMap || recordingPath || savePath;
+    return technique || !params.empty() || cascadeColours || texelDensity || showShadowMap || errorHeatMap || recordingPath || savePath;
   }
 };
 

@@ -201,6 +201,10 @@ class Technique {
   virtual ShadowStats Stats() const = 0;
   // The layers ShadowLocate() can return, for the lab's utilization metric (valid after Configure).
   virtual std::vector<ShadowLayer> Layers() const = 0;
+  // The texture holding the shadow map(s) ShadowLocate() reads (array slices: cascades,
+  // partitions, cube faces; an atlas as one slice), for programs that show it (samples/viewer's
+  // shadow-map view); valid after the first RenderShadows. Null: no single map texture to show.
+  virtual Texture2D* ShadowMapTexture() const { return nullptr; }
   // The light the lab judges this technique on in `scene`: -1 (every directional technique) the
   // directional light; otherwise the local light (LocalLightsOf(scene) index) whose shadow
   // ShadowLocate() reports. The lab's lit pass then writes that light's N.L (0 where it lights
