@@ -8,6 +8,10 @@
 //  VSClearPage     a triangle covering the viewport at depth 1, drawn with depth test ALWAYS to
 //                  reset one page of the pool before its depth is rendered (the viewport and
 //                  scissor are the page's rectangle; D3D11 clears only whole views).
+//! vs_5_0 VSView
+//! ps_5_0 PSView
+//! cs_5_0 CSAnalyze
+//! vs_5_0 VSClearPage
 #include "common/frame.hlsli"
 #include "asm/shadow.hlsli"
 
