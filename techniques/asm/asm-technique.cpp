@@ -47,7 +47,7 @@ class AsmTechnique final : public Technique, public AsmCounterSource {
         {ParamSpec::Int, "effective_resolution", "texels per side of the finest page-table level over the light's view of the scene (page_size * 2^levels)", "16384", 16, 131072, {}},
         {ParamSpec::Int, "page_size", "texels per side of a page (a power of two)", "128", 8, 1024, {}},
         {ParamSpec::Int, "pool_pages", "pages per side of the physical pool (the pool holds pool_pages^2 pages, pool_pages * page_size texels per side)", "16", 1, 256, {}},
-        {ParamSpec::Int, "resident_levels", "coarse levels 0..n-1 kept resident at all times (so every point has a page)", "2", 1, 6, {}},
+        {ParamSpec::Int, "resident_levels", "coarse levels 0..n-1 kept resident at all times (so every point has a page, and shadows too small for the analysis to see at coarser levels are still drawn)", "4", 1, 6, {}},
         {ParamSpec::Int, "iterations", "refinement iterations (analysis, readback, allocation, page rendering) per frame at most", "4", 1, 64, {}},
         {ParamSpec::Float, "edge_threshold", "Sobel gradient magnitude of the shadow term above which a pixel is a shadow boundary", "0.1", 0.0, 8.0, {}},
         {ParamSpec::Int, "depth_bias", "D3D11 DepthBias (units of the depth format)", "200", -1e7, 1e7, {}},

@@ -24,7 +24,7 @@ tech::AsmCounters CountersOf(tech::Renderer& r) { return dynamic_cast<tech::AsmC
 TEST_P(AsmTechniqueTest, ShadowMatchesAnalyticShadowOfAFloatingBox) {
   const uint32_t W = 128, H = 128;
   scene::Scene s = FloatingBox(false);
-  auto r = MakeTechniqueRenderer(device(), "asm", s, W, H, {{"effective_resolution", "8192"}, {"page_size", "64"}, {"pool_pages", "16"}});
+  auto r = MakeTechniqueRenderer(device(), "asm", s, W, H, {{"effective_resolution", "8192"}, {"page_size", "64"}, {"pool_pages", "16"}, {"resident_levels", "2"}});
   r->RenderFrame(s.camera, s.light);
   std::vector<uint8_t> img = r->ReadColor();
   Comparison c = CompareWithAnalytic(img, AnalyticFloor(s, W, H), W, H, 2);
@@ -87,7 +87,7 @@ TEST_P(AsmTechniqueTest, ShadowEdgeIsAsSharpAsTheEffectiveResolution) {
   auto expectedRamp = [&](float resolution) { return 0.8f * std::sqrt(2.0f) * extent / resolution / pixel; };
 
   auto a = MakeTechniqueRenderer(device(), "asm", s, W, H,
-                                 {{"effective_resolution", "32768"}, {"page_size", "128"}, {"pool_pages", "8"}, {"edge_threshold", "0.02"}});
+                                 {{"effective_resolution", "32768"}, {"page_size", "128"}, {"pool_pages", "8"}, {"resident_levels", "2"}, {"edge_threshold", "0.02"}});
   a->RenderFrame(cam, s.light);
   std::vector<uint8_t> asmImg = a->ReadColor();
   auto b = MakeTechniqueRenderer(device(), "basic", s, W, H, {{"resolution", "2048"}});
@@ -95,7 +95,7 @@ TEST_P(AsmTechniqueTest, ShadowEdgeIsAsSharpAsTheEffectiveResolution) {
   std::vector<uint8_t> basicImg = b->ReadColor();
   // The same pages at a lower effective resolution: the edge must be as blurred as that map's.
   auto c = MakeTechniqueRenderer(device(), "asm", s, W, H,
-                                 {{"effective_resolution", "4096"}, {"page_size", "128"}, {"pool_pages", "8"}, {"edge_threshold", "0.02"}});
+                                 {{"effective_resolution", "4096"}, {"page_size", "128"}, {"pool_pages", "8"}, {"resident_levels", "2"}, {"edge_threshold", "0.02"}});
   c->RenderFrame(cam, s.light);
   std::vector<uint8_t> coarseImg = c->ReadColor();
   int asmRamp = EdgeRampPixels(asmImg, W, H), basicRamp = EdgeRampPixels(basicImg, W, H), coarseRamp = EdgeRampPixels(coarseImg, W, H);
@@ -123,7 +123,7 @@ TEST_P(AsmTechniqueTest, ShadowEdgeIsAsSharpAsTheEffectiveResolution) {
 TEST_P(AsmTechniqueTest, FullPoolCountsUnservedRequestsAndStillShadows) {
   const uint32_t W = 128, H = 128;
   scene::Scene s = FloatingBox(false);
-  auto r = MakeTechniqueRenderer(device(), "asm", s, W, H, {{"effective_resolution", "8192"}, {"page_size", "32"}, {"pool_pages", "3"}});
+  auto r = MakeTechniqueRenderer(device(), "asm", s, W, H, {{"effective_resolution", "8192"}, {"page_size", "32"}, {"pool_pages", "3"}, {"resident_levels", "2"}});
   r->RenderFrame(s.camera, s.light);
   tech::AsmCounters n = CountersOf(*r);
   EXPECT_GT(n.unserved, 0u);
@@ -135,9 +135,10 @@ TEST_P(AsmTechniqueTest, FullPoolCountsUnservedRequestsAndStillShadows) {
 }
 
 // Misclassification against the ray-traced reference on the built-in default scene, beside
-// basic's at its default 2048: asm refines only where the analysis sees a shadow boundary, so it
-// must not be much worse anywhere (a shadow the coarse levels miss entirely stays missed: the
-// paper's limitation, measured here, bounded loosely).
+// basic's at its default 2048: asm refines only where the analysis sees a shadow boundary, and a
+// shadow the resident levels miss entirely stays missed (the paper's limitation); with the default
+// four resident levels it must be within 0.1 percentage points of basic (with two it was 0.346 %
+// against 0.122 %, which this bound refuses).
 double Misclassified(Device& device, const scene::Scene& s, const std::string& technique, const TechniqueParams& params) {
   const uint32_t W = 160, H = 96;
   auto r = MakeTechniqueRenderer(device, technique, s, W, H, params, LabOptions(true));
@@ -160,14 +161,15 @@ TEST_P(AsmTechniqueTest, MisclassificationAgainstTheReferenceIsSmall) {
   scene::Scene s = scene::MakeBuiltinScene("default");
   double asmPct = Misclassified(device(), s, "asm", {}), basicPct = Misclassified(device(), s, "basic", {});
   std::printf("default scene 160x96: asm misclassified %.3f %%, basic 2048 %.3f %%\n", asmPct, basicPct);
-  EXPECT_LT(asmPct, 1.0);
-  EXPECT_LE(asmPct, basicPct + 0.5);
+  EXPECT_LT(asmPct, 0.5);
+  EXPECT_LE(asmPct, basicPct + 0.1);
 }
 
 TEST_P(AsmTechniqueTest, RefusesImpossibleParametersNamingThem) {
   ExpectConfigureRefused(device(), "asm", {{"page_size", "96"}}, "page_size");
   ExpectConfigureRefused(device(), "asm", {{"effective_resolution", "20000"}}, "effective_resolution");
   ExpectConfigureRefused(device(), "asm", {{"effective_resolution", "128"}, {"page_size", "64"}, {"resident_levels", "3"}}, "resident_levels");
+  ExpectConfigureRefused(device(), "asm", {{"pool_pages", "9"}}, "pool_pages");  // 81 pages, the default 4 resident levels pin 85
   ExpectConfigureRefused(device(), "asm", {{"pool_pages", "2"}, {"resident_levels", "2"}}, "pool_pages");
   ExpectConfigureRefused(device(), "asm", {{"pool_pages", "200"}, {"page_size", "128"}}, "pool_pages");
   ExpectConfigureRefused(device(), "asm", {{"effective_resolution", "131072"}, {"page_size", "16"}}, "effective_resolution");
