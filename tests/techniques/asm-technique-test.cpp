@@ -165,6 +165,41 @@ TEST_P(AsmTechniqueTest, MisclassificationAgainstTheReferenceIsSmall) {
   EXPECT_LE(asmPct, basicPct + 0.1);
 }
 
+// Two close-ups of different parts of the shadow, alternated, with a pool too small for both:
+// each view evicts the other's pages (LRU), and every frame still matches the analytic shadow, so
+// an evicted page's table entry is gone before its pool slot holds another page.
+TEST_P(AsmTechniqueTest, EvictedPagesLeaveTheTablesAcrossViews) {
+  const uint32_t W = 128, H = 128;
+  scene::Scene s = FloatingBox(false);
+  auto r = MakeTechniqueRenderer(device(), "asm", s, W, H,
+                                 {{"effective_resolution", "8192"}, {"page_size", "32"}, {"pool_pages", "5"}, {"resident_levels", "2"}});
+  scene::Camera views[2];
+  for (int v = 0; v < 2; ++v) {
+    float x = v == 0 ? -1.0f : 3.0f;  // the shadow's two edges across x
+    views[v].position = {x, 1.5f, 0.001f};  // below the box (y 2..4), which stays out of view
+    views[v].target = {x, 0.0f, 0.0f};
+    views[v].up = {0.0f, 0.0f, -1.0f};
+    views[v].fovY = glm::radians(50.0f);
+    views[v].nearZ = 0.5f;
+    views[v].farZ = 10.0f;
+  }
+  uint32_t evicted = 0;
+  for (int frame = 0; frame < 4; ++frame) {
+    s.camera = views[frame % 2];
+    r->RenderFrame(s.camera, s.light);
+    tech::AsmCounters n = CountersOf(*r);
+    if (frame > 0) evicted += n.evicted;
+    Comparison c = CompareWithAnalytic(r->ReadColor(), AnalyticFloor(s, W, H), W, H, 3);
+    std::printf("asm views: frame %d: %u pages rendered, %u evicted, %u unserved, %u resident; %d checked, %d wrong\n", frame, n.pagesRendered,
+                n.evicted, n.unserved, n.resident, c.checked, c.wrong);
+    EXPECT_GT(c.checked, int(W * H / 2));
+    EXPECT_GT(c.shadow, 100);
+    EXPECT_EQ(c.wrong, 0) << "frame " << frame;
+    if (frame > 0) EXPECT_EQ(n.resident, 25u) << "the pool stays full once filled";
+  }
+  EXPECT_GT(evicted, 0u) << "the views must compete for the pool";
+}
+
 TEST_P(AsmTechniqueTest, RefusesImpossibleParametersNamingThem) {
   ExpectConfigureRefused(device(), "asm", {{"page_size", "96"}}, "page_size");
   ExpectConfigureRefused(device(), "asm", {{"effective_resolution", "20000"}}, "effective_resolution");
