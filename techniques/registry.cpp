@@ -16,6 +16,7 @@ std::unique_ptr<Technique> MakeCubeTechnique();
 std::unique_ptr<Technique> MakeSpotTechnique();
 std::unique_ptr<Technique> MakeVsdctTechnique();
 std::unique_ptr<Technique> MakeParaboloidTechnique();
+std::unique_ptr<Technique> MakeAsmTechnique();
 
 namespace {
 struct Entry {
@@ -34,6 +35,7 @@ const Entry kTechniques[] = {
     {"spot", MakeSpotTechnique},
     {"vsdct", MakeVsdctTechnique},
     {"paraboloid", MakeParaboloidTechnique},
+    {"asm", MakeAsmTechnique},
 };
 }  // namespace
 

@@ -1,0 +1,81 @@
+// Adaptive shadow maps: the refinement's analysis (techniques/asm/asm-technique.cpp).
+//  VSView/PSView   the camera's view of the scene, writing per pixel the light-space uv, the
+//                  shadow term of the current pages (asm/shadow.hlsli) and the page-table level
+//                  the pixel needs (one map texel per pixel at most);
+//  CSAnalyze       a Sobel edge detector on that shadow term: each boundary pixel requests the
+//                  page (level, x, y) it needs; a per-frame bitmap (InterlockedOr) lets each page
+//                  be appended once to the request stream (AppendStructuredBuffer);
+//  VSClearPage     a triangle covering the viewport at depth 1, drawn with depth test ALWAYS to
+//                  reset one page of the pool before its depth is rendered (the viewport and
+//                  scissor are the page's rectangle; D3D11 clears only whole views).
+//! vs_5_0 VSView
+//! ps_5_0 PSView
+//! cs_5_0 CSAnalyze
+//! vs_5_0 VSClearPage
+#include "common/frame.hlsli"
+#include "asm/shadow.hlsli"
+
+struct ViewOut {
+  float4 pos : SV_Position;
+  float3 worldPos : WORLDPOS;
+};
+
+ViewOut VSView(float3 pos : POSITION) {
+  ViewOut o;
+  float4 wp = mul(world, float4(pos, 1.0));
+  o.worldPos = wp.xyz;
+  o.pos = mul(viewProj, wp);
+  return o;
+}
+
+float4 PSView(ViewOut i) : SV_Target {
+  float3 c = AsmShadowCoord(i.worldPos);
+  // Map texels per pixel at level 0 along the longer footprint axis, from the screen derivatives
+  // of uv; level L has 2^L times as many: the level needed is ceil(log2(texels at level 0)).
+  float2 dx = ddx(c.xy), dy = ddy(c.xy);
+  float footprint = max(length(dx), length(dy)) * asmPageSize;  // level-0 texels per pixel
+  float need = footprint > 0.0 ? ceil(log2(1.0 / footprint)) : asmMaxLevel;
+  float level = clamp(need, 0.0, asmMaxLevel);
+  if (AsmOutsideMap(c)) return float4(-1, -1, 1, -1);
+  return float4(c.xy, AsmVisibility(c), level);
+}
+
+cbuffer AsmAnalysis : register(b0) {
+  uint2 analysisSize;
+  uint analysisMaxLevel;
+  float edgeThreshold;
+};
+
+Texture2D<float4> View : register(t0);
+RWByteAddressBuffer Requested : register(u0);
+AppendStructuredBuffer<uint> Requests : register(u1);
+
+[numthreads(8, 8, 1)] void CSAnalyze(uint3 id : SV_DispatchThreadID) {
+  if (any(id.xy >= analysisSize)) return;
+  float4 c = View.Load(int3(id.xy, 0));
+  if (c.w < 0.0) return;
+  // Sobel on the shadow term; pixels without geometry count as this pixel's value.
+  float s[3][3];
+  [unroll] for (int y = 0; y < 3; ++y)
+    [unroll] for (int x = 0; x < 3; ++x) {
+      int2 q = clamp(int2(id.xy) + int2(x - 1, y - 1), int2(0, 0), int2(analysisSize) - 1);
+      float4 n = View.Load(int3(q, 0));
+      s[y][x] = n.w < 0.0 ? c.z : n.z;
+    }
+  float gx = (s[0][2] + 2.0 * s[1][2] + s[2][2]) - (s[0][0] + 2.0 * s[1][0] + s[2][0]);
+  float gy = (s[2][0] + 2.0 * s[2][1] + s[2][2]) - (s[0][0] + 2.0 * s[0][1] + s[0][2]);
+  if (sqrt(gx * gx + gy * gy) < edgeThreshold) return;
+  uint level = min(uint(c.w), analysisMaxLevel);
+  uint n = 1u << level;
+  uint2 p = min(uint2(saturate(c.xy) * float(n)), uint2(n - 1, n - 1));
+  // Bit of the page in the per-frame bitmap: levels 0..level-1 hold (4^level - 1) / 3 pages.
+  uint bit = ((1u << (2u * level)) - 1u) / 3u + p.y * n + p.x;
+  uint mask = 1u << (bit & 31u), before;
+  Requested.InterlockedOr((bit >> 5) * 4, mask, before);
+  if ((before & mask) == 0) Requests.Append((level << 28) | (p.y << 14) | p.x);
+}
+
+float4 VSClearPage(uint id : SV_VertexID) : SV_Position {
+  float2 t = float2((id << 1) & 2, id & 2);
+  return float4(t * 2.0 - 1.0, 1.0, 1.0);
+}
