@@ -314,6 +314,7 @@ nlohmann::json RunBench(const BenchOptions& o, const Progress& progress) {
       std::snprintf(label, sizeof label, "-gamma%g", double(g));
       v.name = sc.name + label;
       v.light.direction = LightAtGamma(forward, g);
+      v.regions.clear();  // laid out for the scene's own light (scene::Region)
       scenes.push_back(std::move(v));
     }
   }
