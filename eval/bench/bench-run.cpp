@@ -183,6 +183,11 @@ RunResult RunOne(const RunSpec& spec, eval::ReferenceCache& reference, const Pro
 
     eval::Accuracy a = eval::MeasureAccuracy(now, ref.data());
     r.accuracy.add(a);
+    r.regions.resize(scene.regions.size());
+    for (size_t k = 0; k < scene.regions.size(); ++k) {
+      r.regions[k].first = scene.regions[k].name;
+      r.regions[k].second.add(eval::MeasureRegionAccuracy(now, ref.data(), scene.regions[k]));
+    }
     if (judgePointLight) {
       // Two texels of the faces this frame rendered (their resolution may follow the light's
       // size on screen); a technique whose layers are not six equal square faces (not a cube map)

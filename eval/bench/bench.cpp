@@ -170,6 +170,18 @@ nlohmann::json RunToJson(const RunResult& r, const std::map<std::string, std::st
       {"shadow_triangles", r.shadowTriangles},
       {"shadow_layers_rendered", r.shadowLayersRendered},
   };
+  if (!r.regions.empty()) {
+    json regions = json::object();
+    for (const auto& [name, a] : r.regions)
+      regions[name] = {{"pixels", a.receiving},
+                       {"mean_abs_error", Round(a.meanAbsError(), 1e6)},
+                       {"penumbra_mean_abs_error", Round(a.penumbraMeanAbsError(), 1e6)},
+                       {"penumbra_pixels", a.penumbra},
+                       {"umbra_pixels", a.umbra},
+                       {"umbra_leak_fraction", Round(a.umbraLeakFraction(), 1e6)},
+                       {"umbra_mean_visibility", Round(a.umbraMeanVisibility(), 1e6)}};
+    m["regions"] = regions;
+  }
   if (!r.hpsmDecisions.empty()) {
     json h = json::object();
     for (const auto& [k, v] : r.hpsmDecisions) h[k] = Round(v, 1e4);
@@ -302,6 +314,7 @@ nlohmann::json RunBench(const BenchOptions& o, const Progress& progress) {
       std::snprintf(label, sizeof label, "-gamma%g", double(g));
       v.name = sc.name + label;
       v.light.direction = LightAtGamma(forward, g);
+      v.regions.clear();  // laid out for the scene's own light (scene::Region)
       scenes.push_back(std::move(v));
     }
   }

@@ -52,6 +52,8 @@ struct RunResult {
   uint64_t sceneTriangles = 0;
 
   eval::Accuracy accuracy;
+  // The same per region of the scene (scene::Scene::regions, in that order), over all frames.
+  std::vector<std::pair<std::string, eval::Accuracy>> regions;
   double texelsPerPixelMedian = 0, texelsPerPixelP05 = 0;
   // Lloyd et al.'s measures, of the worst frame: the largest projected size of a shadow texel in
   // pixels over the visible receivers (1 / texels per pixel; the 99.9th percentile over pixels,

@@ -10,7 +10,9 @@
 #  5. PCSS against the area-light reference (--light-size) next to fixed kernels and hw2x2, on the
 #     default scene and on overlapping occluders at different depths; the penumbra-only error on
 #     stacked-planks (a high plank crossing over a low one: PCSS's one average blocker depth) against
-#     single-plank (the low plank alone): part "5b".
+#     single-plank (the low plank alone): part "5b"; the same pixels near the crossing alone (the
+#     scenes' "crossing" region, and "far" as the control): penumbra MAE and light bleeding into
+#     the umbra (bench results' metrics.regions): part "5c".
 #   eval/experiments/techniques-v.sh [OUT_DIR] [WxH] [FRAMES]
 # PARTS="1 3" runs only those parts (default: all); SCENES, TECHS, KERNELS (filter=... suffixes) and
 # SUNS (pcss light_size values) override part 1's lists, e.g. for a quick run.
@@ -22,7 +24,7 @@ ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 OUT="${1:-$ROOT/out/techniques-v}"
 SIZE="${2:-640x360}"
 FRAMES="${3:-8}"
-PARTS="${PARTS:-1 3 4 5 5b}"
+PARTS="${PARTS:-1 3 4 5 5b 5c}"
 SCENES="${SCENES:-default,terrain-city,grazing-light}"
 part() { [[ " $PARTS " == *" $1 "* ]]; }
 SP="$ROOT/shadowport"
@@ -104,5 +106,13 @@ fi
 #     the high plank's penumbra is wider than the default 15 texels allow.
 part 5b && try_bench "pcss-planks-sun3" --frames 2 --light-size 3 --scene stacked-planks,single-plank \
   --technique basic:filter=pcss,csm:bias=receiver-plane:filter=pcss,csm:bias=receiver-plane:filter=pcss:pcss_max_kernel=31,csm:bias=receiver-plane:filter=gathercmp:kernel=15,csm:bias=receiver-plane:filter=hw2x2
+# 5c. The blocker-average failure where it can happen (scene::Scene::regions of both plank
+#     scenes, laid out from their geometry in scene/procedural/close-scenes.cpp): fixed kernels,
+#     PCSS with the default clamp, with 31, and with 31 and the densest blocker search.
+rp=""
+for f in hw2x2 gathercmp:kernel=15 gathercmp:kernel=31 pcss pcss:pcss_max_kernel=31 pcss:pcss_max_kernel=31:pcss_search=16; do
+  rp="${rp:+$rp,}csm:bias=receiver-plane:filter=$f"
+done
+part 5c && try_bench "planks-regions-sun3" --frames 2 --light-size 3 --scene stacked-planks,single-plank --technique "$rp"
 
 /usr/bin/python3 "$ROOT/eval/experiments/techniques_v_tables.py" "$OUT"

@@ -13,6 +13,7 @@ import numpy as np
 from PIL import Image
 
 BACKENDS = ("vulkan", "gl")
+UMBRA_LEAK = 0.1  # eval::kUmbraLeakThreshold
 
 
 def runs(out, name):
@@ -190,6 +191,42 @@ def pcss_table(out):
                  f"{gl['metrics']['mean_abs_error']:.4f}" if gl else "-"])
 
 
+def regions_table(out):
+    """Part 5c: per region of the plank scenes, the same pixels in stacked-planks and single-plank."""
+    rs = runs(out, "planks-regions-sun3")
+    why = refused(out, "planks-regions-sun3")
+    if why:
+        print(f"\n**Plank regions**: refused: {why}")
+    if not rs:
+        return
+    groups = {}
+    for r in rs:
+        label = filter_label(r) + ("" if r["params"].get("pcss_search", "6") == "6" else f" search {r['params']['pcss_search']}")
+        groups.setdefault(label, {}).setdefault(r["scene"], {})[r["backend"]] = r
+    for region in ("under-high-penumbra", "beside-high-penumbra", "far"):
+        print(f"\n**Region `{region}`** (csm receiver-plane; Vulkan; single-plank -> stacked-planks on the same pixels; "
+              f"leak = fraction of the reference's umbra pixels above {UMBRA_LEAK}; GL column: every number equal on GL)\n")
+        header(["filter", "pixels", "penumbra MAE (pixels)", "umbra pixels", "umbra leak", "umbra mean visibility", "MAE",
+                "same on GL"])
+        for label in sorted(groups, key=lambda l: (l.startswith("pcss"), l)):
+            cells, same = [], True
+            for scene in ("single-plank", "stacked-planks"):
+                b = groups[label].get(scene, {})
+                vk, gl = b.get("vulkan"), b.get("gl")
+                reg = vk["metrics"].get("regions", {}).get(region) if vk else None
+                same = same and gl is not None and reg == gl["metrics"].get("regions", {}).get(region)
+                cells.append(reg)
+            if None in cells:
+                row([label] + ["-"] * 7)
+                continue
+            s, t = cells
+            two = lambda k, f: f"{s[k]:{f}} -> {t[k]:{f}}"
+            row([label, two("pixels", "d"), f"{s['penumbra_mean_abs_error']:.4f} ({s['penumbra_pixels']}) -> "
+                 f"{t['penumbra_mean_abs_error']:.4f} ({t['penumbra_pixels']})", two("umbra_pixels", "d"),
+                 two("umbra_leak_fraction", ".4f"), two("umbra_mean_visibility", ".4f"), two("mean_abs_error", ".4f"),
+                 "yes" if same else "NO"])
+
+
 def biased_table(out):
     """Part 1 again with a slope bias large enough for the kernel, in one counted run."""
     rs = runs(out, "biased")
@@ -220,6 +257,7 @@ def main():
     sweep_table(out, "sweep-eps", "hpsm_eps", "hpsm_eps sweep")
     sweep_table(out, "sweep-block", "hpsm_block", "hpsm_block sweep")
     pcss_table(out)
+    regions_table(out)
 
 
 if __name__ == "__main__":

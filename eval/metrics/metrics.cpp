@@ -15,6 +15,9 @@ void Accuracy::add(const Accuracy& o) {
   absErrorSum += o.absErrorSum;
   penumbra += o.penumbra;
   penumbraAbsErrorSum += o.penumbraAbsErrorSum;
+  umbra += o.umbra;
+  umbraLeaked += o.umbraLeaked;
+  umbraVisibilitySum += o.umbraVisibilitySum;
 }
 
 namespace {
@@ -28,6 +31,11 @@ void Judge(Accuracy& a, float v, float ref) {
   if (ref > 0.0f && ref < 1.0f) {
     ++a.penumbra;
     a.penumbraAbsErrorSum += std::abs(double(v) - double(ref));
+  }
+  if (ref == 0.0f) {
+    ++a.umbra;
+    if (v > kUmbraLeakThreshold) ++a.umbraLeaked;
+    a.umbraVisibilitySum += double(v);
   }
 }
 
@@ -47,6 +55,13 @@ Accuracy MeasureAccuracy(const tech::LabBuffers& lab, const float* reference) {
   Accuracy a;
   for (size_t i = 0; i < lab.size(); ++i)
     if (lab.receiving(i)) Judge(a, lab.visibility[i], reference[i]);
+  return a;
+}
+
+Accuracy MeasureRegionAccuracy(const tech::LabBuffers& lab, const float* reference, const scene::Region& region) {
+  Accuracy a;
+  for (size_t i = 0; i < lab.size(); ++i)
+    if (lab.receiving(i) && region.contains(glm::vec3(lab.position[i]))) Judge(a, lab.visibility[i], reference[i]);
   return a;
 }
 

@@ -14,6 +14,10 @@ namespace sp::eval {
 
 // A filtered technique's visibility counts as lit from this value up.
 constexpr float kLitThreshold = 0.5f;
+// A pixel of the reference's umbra (visibility exactly 0) that a technique gives more than this is
+// counted as light bleeding into the umbra (Accuracy::umbraLeaked): well above the bit-exact noise
+// of a comparison filter, below anything an eye would take for a shadow.
+constexpr float kUmbraLeakThreshold = 0.1f;
 
 // --- Accuracy against the reference: per pixel the fraction of the light visible, 0..1 (0/1 for a
 // hard light; fractional in the penumbra of an area light, ReferenceLight::size). A pixel is
@@ -32,6 +36,10 @@ struct Accuracy {
   // the lit area ("penumbra_mean_abs_error", "penumbra_pixels"). None with a hard reference.
   uint64_t penumbra = 0;
   double penumbraAbsErrorSum = 0;
+  // Light bleeding: pixels whose reference is exactly 0 (the umbra), those of them the technique
+  // gives more than kUmbraLeakThreshold, and the sum of the technique's visibility over the umbra.
+  uint64_t umbra = 0, umbraLeaked = 0;
+  double umbraVisibilitySum = 0;
 
   void add(const Accuracy& o);
   double misclassifiedPct() const { return Pct(falseLit + falseShadow); }
@@ -39,6 +47,8 @@ struct Accuracy {
   double falseShadowPct() const { return Pct(falseShadow); }
   double meanAbsError() const { return receiving ? absErrorSum / double(receiving) : 0.0; }
   double penumbraMeanAbsError() const { return penumbra ? penumbraAbsErrorSum / double(penumbra) : 0.0; }
+  double umbraLeakFraction() const { return umbra ? double(umbraLeaked) / double(umbra) : 0.0; }
+  double umbraMeanVisibility() const { return umbra ? umbraVisibilitySum / double(umbra) : 0.0; }
 
  private:
   double Pct(uint64_t n) const { return receiving ? 100.0 * double(n) / double(receiving) : 0.0; }
@@ -46,6 +56,8 @@ struct Accuracy {
 
 Accuracy MeasureAccuracy(const tech::LabBuffers& lab, const uint8_t* reference);
 Accuracy MeasureAccuracy(const tech::LabBuffers& lab, const float* reference);
+// The same over the judged pixels whose world point (LabBuffers::position) is in `region`.
+Accuracy MeasureRegionAccuracy(const tech::LabBuffers& lab, const float* reference, const scene::Region& region);
 
 // --- Seams: accuracy near the edges between the faces of a point light's shadow cube
 

@@ -117,6 +117,50 @@ Scene MakeOverlappingOccluders(uint64_t budget) {
 
 namespace {
 
+// The sun's angular diameter the planks' regions are laid out for: part 5b/5c of
+// eval/experiments/techniques-v.sh run these scenes with --light-size 3.
+constexpr float kPlankSunDegrees = 3.0f;
+
+// Regions of the floor (y = 0) where PCSS's one average blocker depth can go wrong, the same in
+// both plank scenes so that their pixels are the same ones (the camera is below the high plank,
+// which is never on screen). A blocker edge at height h casts its hard edge on the floor at
+// h * (dx, dz) / -dy from it (d the light's direction) and a penumbra about
+// h * (tan(t + a) - tan(t - a)) wide across it, t the light's tilt from the vertical in the plane
+// across the edge and a the sun's angular radius: 0.03 m for the low plank, 0.16 m for the high
+// one at 3 degrees.
+// In the low plank's shadow (both long edges with 0.1 m of floor beyond them and its umbra
+// between):
+//  "under-high-penumbra": where the high plank's penumbra crosses it (1.15 times its half width
+//    plus 1 cm for the plank's thickness either side of its hard edges): the area light's
+//    visibility is the two planks' together there, PCSS's blocker search finds both, and its one
+//    average blocker depth is wrong for each;
+//  "beside-high-penumbra": strips 0.1 m wide just outside that: the area light's visibility is the
+//    low plank's alone, as in single-plank, but a blocker search reaching further than the high
+//    plank's penumbra (PCSS searches the penumbra of a blocker on the light's near plane, up to
+//    pcss_max_kernel / 2 texels) still mixes the high plank's depth into the average;
+//  "far": the same band 0.5 m or more from the high plank's penumbra, which no search reaches.
+std::vector<Region> PlankRegions(const glm::vec3& light, const glm::vec3& lowCentre, const glm::vec3& lowSize,
+                                 const glm::vec3& highCentre, const glm::vec3& highSize) {
+  glm::vec2 slope(light.x / -light.y, light.z / -light.y);  // floor offset per metre of height
+  glm::vec2 low = glm::vec2(lowCentre.x, lowCentre.z) + slope * lowCentre.y;
+  glm::vec2 high = glm::vec2(highCentre.x, highCentre.z) + slope * highCentre.y;
+  float a = glm::radians(0.5f * kPlankSunDegrees), t = std::atan(slope.x);
+  float highHalfPenumbra = 0.5f * highCentre.y * (std::tan(t + a) - std::tan(t - a));
+  float gap = 1.15f * highHalfPenumbra + 0.01f, strip = 0.1f, beyond = 0.1f;
+  float z0 = low.y - 0.5f * lowSize.z - beyond, z1 = low.y + 0.5f * lowSize.z + beyond;
+  float left = high.x - 0.5f * highSize.x - gap, right = high.x + 0.5f * highSize.x + gap;
+  auto band = [&](float x0, float x1) {
+    Bounds b;
+    b.extend({x0, -0.01f, z0});
+    b.extend({x1, 0.01f, z1});
+    return b;
+  };
+  float far = right + 0.5f;
+  return {Region{"under-high-penumbra", {band(left, left + 2.0f * gap), band(right - 2.0f * gap, right)}},
+          Region{"beside-high-penumbra", {band(left - strip, left), band(right, right + strip)}},
+          Region{"far", {band(far, far + 2.0f * strip)}}};
+}
+
 // A low plank 0.6 m over a floor and, with `high`, a second plank 3 m up crossing over it, under a
 // near-overhead sun: PCSS's blocker search around the low plank's penumbra also finds the high
 // plank, and its one average blocker depth widens the low plank's penumbra (issue 15's known
@@ -128,10 +172,13 @@ Scene MakePlanks(uint64_t budget, bool high) {
   int k = LevelForBudget(1, 128, budget * 2 / 10, [](int c) { return uint64_t(2) * 12 * c * c; });
   uint32_t box = s.addMesh(MakeGridBox(k, "plank"));
   s.light.direction = glm::normalize(glm::vec3(0.2f, -1.0f, 0.15f));
-  s.addInstance(box, Place({0.0f, 0.6f, 0.0f}, {3.0f, 0.04f, 0.4f}), {0.62f, 0.45f, 0.30f});
+  const glm::vec3 lowCentre(0.0f, 0.6f, 0.0f), lowSize(3.0f, 0.04f, 0.4f);
+  const glm::vec3 highCentre(-0.48f, 3.0f, -0.36f), highSize(0.5f, 0.04f, 3.0f);
+  s.addInstance(box, Place(lowCentre, lowSize), {0.62f, 0.45f, 0.30f});
   // Over the low plank so that its shadow on the floor (offset by 3 m along the light) crosses the
   // low plank's shadow at right angles.
-  if (high) s.addInstance(box, Place({-0.48f, 3.0f, -0.36f}, {0.5f, 0.04f, 3.0f}), {0.45f, 0.50f, 0.62f});
+  if (high) s.addInstance(box, Place(highCentre, highSize), {0.45f, 0.50f, 0.62f});
+  s.regions = PlankRegions(s.light.direction, lowCentre, lowSize, highCentre, highSize);
   AddTiledFloor(s, {0.0f, 0.0f, 0.0f}, {8.0f, 8.0f}, Remainder(s, budget), {0.72f, 0.70f, 0.66f});
   s.camera.position = {1.2f, 1.6f, 1.9f};
   s.camera.target = {0.1f, 0.0f, 0.1f};

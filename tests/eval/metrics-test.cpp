@@ -171,5 +171,48 @@ TEST(LabMetrics, TexelDensityBandsAreOctavesAroundOne) {
   EXPECT_EQ(eval::TexelDensityColor(1e9f), eval::TexelDensityColor(32.0f));
 }
 
+// A region is the union of its world boxes (LabBuffers::position); only judged pixels inside it
+// count, and the umbra counts (reference exactly 0) and their light bleeding follow the same
+// pixels. Pixel i sits at x = i; boxes [0.5, 2.5] and [5, 6] hold pixels 1, 2, 5, 6.
+TEST(LabMetrics, RegionAccuracyCountsOnlyPixelsInItsBoxesAndTheUmbraLeak) {
+  tech::LabBuffers b = Frame(9, 1);
+  for (uint32_t i = 0; i < 9; ++i) b.position[i] = glm::vec4(float(i), 0.0f, 0.0f, 1.0f);
+  std::vector<float> ref = {0.0f, 0.0f, 0.0f, 0.0f, 0.5f, 0.0f, 0.5f, 1.0f, 0.0f};
+  b.visibility = {0.9f, 0.1f, 0.3f, 0.0f, 0.75f, 0.05f, 0.25f, 1.0f, 1.0f};
+  b.normal[2].w = 0.0f;  // in a box but not judged
+  scene::Region region{"r", {}};
+  scene::Bounds box;
+  box.extend({0.5f, -1.0f, -1.0f});
+  box.extend({2.5f, 1.0f, 1.0f});
+  region.boxes.push_back(box);
+  box = {};
+  box.extend({5.0f, 0.0f, 0.0f});  // a flat box: its faces are inside
+  box.extend({6.0f, 0.0f, 0.0f});
+  region.boxes.push_back(box);
+  eval::Accuracy a = eval::MeasureRegionAccuracy(b, ref.data(), region);
+  EXPECT_EQ(a.receiving, 3u);  // pixels 1, 5, 6
+  EXPECT_EQ(a.umbra, 2u);      // 1, 5
+  // 0.1 is not above kUmbraLeakThreshold (0.1), 0.05 neither: no leak.
+  EXPECT_EQ(a.umbraLeaked, 0u);
+  EXPECT_NEAR(a.umbraMeanVisibility(), (0.1 + 0.05) / 2, 1e-7);
+  EXPECT_EQ(a.penumbra, 1u);  // 6
+  EXPECT_NEAR(a.penumbraMeanAbsError(), 0.25, 1e-7);
+  EXPECT_NEAR(a.meanAbsError(), (0.1 + 0.05 + 0.25) / 3, 1e-7);
+
+  // The whole frame: umbra pixels 0, 1, 3, 5, 8 (2 is not judged); 0 (0.9) and 8 (1.0) leak.
+  eval::Accuracy all = eval::MeasureAccuracy(b, ref.data());
+  EXPECT_EQ(all.umbra, 5u);
+  EXPECT_EQ(all.umbraLeaked, 2u);
+  EXPECT_NEAR(all.umbraLeakFraction(), 0.4, 1e-12);
+  EXPECT_NEAR(all.umbraMeanVisibility(), (0.9 + 0.1 + 0.0 + 0.05 + 1.0) / 5, 1e-7);
+  eval::Accuracy twice = all;
+  twice.add(all);
+  EXPECT_EQ(twice.umbraLeaked, 4u);
+  EXPECT_NEAR(twice.umbraMeanVisibility(), all.umbraMeanVisibility(), 1e-12);
+
+  // A region with no box holds nothing.
+  EXPECT_EQ(eval::MeasureRegionAccuracy(b, ref.data(), scene::Region{"empty", {}}).receiving, 0u);
+}
+
 }  // namespace
 }  // namespace sp::test

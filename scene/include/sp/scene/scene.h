@@ -15,6 +15,7 @@ struct Bounds {
   glm::vec3 max{-1e30f};
 
   bool empty() const { return min.x > max.x; }
+  bool contains(const glm::vec3& p) const { return glm::all(glm::greaterThanEqual(p, min)) && glm::all(glm::lessThanEqual(p, max)); }
   void extend(const glm::vec3& p) {
     min = glm::min(min, p);
     max = glm::max(max, p);
@@ -155,6 +156,20 @@ class CameraPathRecorder {
   std::vector<CameraKey> keys_;
 };
 
+// A named part of the world that the lab also judges on its own (bench results' "regions"): the
+// union of axis-aligned world boxes, built by a procedural scene from its own geometry where a
+// technique's known failure is confined to a small area that the whole frame's metrics average
+// away (stacked-planks' crossing).
+struct Region {
+  std::string name;
+  std::vector<Bounds> boxes;
+  bool contains(const glm::vec3& p) const {
+    for (const Bounds& b : boxes)
+      if (b.contains(p)) return true;
+    return false;
+  }
+};
+
 struct Scene {
   std::string name;
   std::vector<Mesh> meshes;
@@ -167,6 +182,7 @@ struct Scene {
   // at `camera`, plus paths of its own; LoadScene gives glTF scenes the three standard ones.
   std::vector<CameraPath> cameraPaths;
   Bounds bounds;  // world space, filled by finalize()
+  std::vector<Region> regions;  // empty for most scenes
 
   uint32_t addMesh(Mesh mesh);
   void addInstance(uint32_t mesh, const glm::mat4& transform, const glm::vec3& albedo);
