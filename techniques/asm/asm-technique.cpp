@@ -10,8 +10,6 @@
 // renders depth into each new page (viewport and scissor on its pool rectangle, the light's
 // projection cropped to the page). Levels 0..resident_levels-1 stay resident, so every point has
 // a page. The lookup is asm/shadow.hlsli.
-#include <glm/ext/matrix_clip_space.hpp>
-#include <glm/ext/matrix_transform.hpp>
 #include <cstring>
 #include <stdexcept>
 #include <string>
@@ -21,6 +19,7 @@
 
 #include "asm/asm-counters.h"
 #include "asm/page-allocator.h"
+#include "scene-fit.h"
 
 namespace sp::tech {
 namespace {
@@ -142,7 +141,7 @@ class AsmTechnique final : public Technique, public AsmCounterSource {
 
   void RenderShadows(DeviceContext& ctx, SceneDrawer& drawer, const FrameInputs& frame) override {
     GpuTimer::Scope timed(frame.timer, ctx, "shadow");
-    lightViewProj_ = FitToScene(frame.scene->bounds, frame.light.direction);
+    lightViewProj_ = FitOrthoToBounds(frame.scene->bounds, frame.light.direction).viewProj;  // level 0's page
     Constants c{lightViewProj_, float(pageSize_), float(maxLevel_), float(poolPages_), float(poolPages_ * pageSize_)};
     ctx.UpdateSubresource(constants_.get(), 0, nullptr, &c, 0, 0);
     EnsureViewTargets(frame.width, frame.height);
@@ -210,17 +209,6 @@ class AsmTechnique final : public Technique, public AsmCounterSource {
     Ref<Buffer> b = device.CreateBuffer(d);
     b->SetDebugName(name);
     return b;
-  }
-
-  // An orthographic light frustum around the scene's bounding box (as basic's): level 0's page.
-  static glm::mat4 FitToScene(const scene::Bounds& bounds, const glm::vec3& direction) {
-    glm::vec3 dir = glm::normalize(direction);
-    glm::vec3 center = bounds.center();
-    float radius = glm::length(bounds.extent()) * 0.5f;
-    glm::vec3 up = std::abs(dir.y) > 0.99f ? glm::vec3(0, 0, 1) : glm::vec3(0, 1, 0);
-    glm::mat4 view = glm::lookAtRH(center - dir * radius, center, up);
-    scene::Bounds ls = bounds.transformed(view);
-    return glm::orthoRH_ZO(ls.min.x, ls.max.x, ls.min.y, ls.max.y, -ls.max.z, -ls.min.z) * view;
   }
 
   void UploadLevel(DeviceContext& ctx, uint32_t level) {

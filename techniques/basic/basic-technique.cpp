@@ -5,15 +5,14 @@
 // degrees; docs/techniques.md); optionally a secondary map decides whole footprints before the
 // filter runs (accel: hpsm or the min/max baseline; techniques/hpsm-maps.h). shafts=1 adds sun
 // shafts marched through the map, optionally walked per secondary texel (shaders-hlsl/common/shafts.hlsli).
-#include <glm/ext/matrix_clip_space.hpp>
 #include <stdexcept>
-#include <glm/ext/matrix_transform.hpp>
 
 #include "pcf-params.h"
 #include <sp/tech/shaft-counters.h>
 #include <sp/tech/technique.h>
 
 #include "hpsm-maps.h"
+#include "scene-fit.h"
 
 namespace sp::tech {
 namespace {
@@ -72,7 +71,7 @@ class BasicTechnique final : public Technique, public HpsmCounterSource, public 
 
   void RenderShadows(DeviceContext& ctx, SceneDrawer& drawer, const FrameInputs& frame) override {
     GpuTimer::Scope timed(frame.timer, ctx, "shadow");
-    OrthoFit fit = FitToScene(frame.scene->bounds, frame.light.direction);
+    OrthoFit fit = FitOrthoToBounds(frame.scene->bounds, frame.light.direction);
     lightViewProj_ = fit.viewProj;
     Constants c{lightViewProj_, glm::vec2(float(resolution_)), glm::vec2(0.0f),
                 OrthoPcssConstants(pcss_, fit.nearZ, fit.farZ, fit.extent / float(resolution_)), glm::vec4(shaftDensity_, float(shaftSteps_), 0, 0)};
@@ -162,24 +161,6 @@ class BasicTechnique final : public Technique, public HpsmCounterSource, public 
       throw std::invalid_argument("hpsm_block: " + std::to_string(maps_.block) + " is not a power of two, as shaft_accel=minmax needs");
     if (uint32_t(maps_.block) > resolution_)
       throw std::invalid_argument("hpsm_block: " + std::to_string(maps_.block) + " is wider than the shadow map (" + std::to_string(resolution_) + " texels)");
-  }
-
-  struct OrthoFit {
-    glm::mat4 viewProj;
-    float nearZ, farZ;  // world units along the light direction, from the view's origin
-    glm::vec2 extent;   // the frustum's width and height in world units
-  };
-  // An orthographic light frustum around the scene's bounding box.
-  static OrthoFit FitToScene(const scene::Bounds& bounds, const glm::vec3& direction) {
-    glm::vec3 dir = glm::normalize(direction);
-    glm::vec3 center = bounds.center();
-    float radius = glm::length(bounds.extent()) * 0.5f;
-    glm::vec3 up = std::abs(dir.y) > 0.99f ? glm::vec3(0, 0, 1) : glm::vec3(0, 1, 0);
-    glm::mat4 view = glm::lookAtRH(center - dir * radius, center, up);
-    scene::Bounds ls = bounds.transformed(view);
-    // Right-handed view space looks down -z: near = -max.z, far = -min.z.
-    glm::mat4 proj = glm::orthoRH_ZO(ls.min.x, ls.max.x, ls.min.y, ls.max.y, -ls.max.z, -ls.min.z);
-    return {proj * view, -ls.max.z, -ls.min.z, glm::vec2(ls.max.x - ls.min.x, ls.max.y - ls.min.y)};
   }
 
   // cbuffer BasicShadow in shaders-hlsl/basic/shadow.hlsli.
