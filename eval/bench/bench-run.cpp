@@ -35,17 +35,9 @@ std::string Describe(const RunSpec& s) {
 // The reference for one lab frame: the fraction of the light visible per pixel (receiving pixels
 // only; 0 or 1 for a hard light).
 std::vector<float> Reference(eval::ReferenceCache& cache, const tech::LabBuffers& lab, const eval::ReferenceLight& light, bool* cached) {
-  size_t n = lab.size();
-  std::vector<glm::vec3> pos(n), nrm(n);
-  std::vector<uint8_t> valid(n);
-  std::vector<float> out(n, 0.0f);
-  for (size_t i = 0; i < n; ++i) {
-    pos[i] = glm::vec3(lab.position[i]);
-    nrm[i] = glm::vec3(lab.normal[i]);
-    bool finite = std::isfinite(pos[i].x) && std::isfinite(pos[i].y) && std::isfinite(pos[i].z) && glm::length(nrm[i]) > 0.5f;
-    valid[i] = lab.receiving(i) && finite ? 1 : 0;
-  }
-  *cached = cache.Visibility(pos.data(), nrm.data(), valid.data(), n, light, out.data());
+  eval::LabSurfacePoints p = eval::SurfacePointsOf(lab);
+  std::vector<float> out(p.size(), 0.0f);
+  *cached = cache.Visibility(p.position.data(), p.normal.data(), p.valid.data(), p.size(), light, out.data());
   return out;
 }
 

@@ -47,6 +47,22 @@ std::vector<float> ReferenceAsFloat(const tech::LabBuffers& lab, const uint8_t* 
   return f;
 }
 
+LabSurfacePoints SurfacePointsOf(const tech::LabBuffers& lab) {
+  const size_t n = lab.size();
+  LabSurfacePoints p;
+  p.position.resize(n);
+  p.normal.resize(n);
+  p.valid.resize(n);
+  for (size_t i = 0; i < n; ++i) {
+    glm::vec3 x(lab.position[i]), nrm(lab.normal[i]);
+    p.position[i] = x;
+    p.normal[i] = nrm;
+    bool finite = std::isfinite(x.x) && std::isfinite(x.y) && std::isfinite(x.z) && glm::length(nrm) > 0.5f;
+    p.valid[i] = lab.receiving(i) && finite ? 1 : 0;
+  }
+  return p;
+}
+
 Accuracy MeasureAccuracy(const tech::LabBuffers& lab, const uint8_t* reference) {
   return MeasureAccuracy(lab, ReferenceAsFloat(lab, reference).data());
 }

@@ -54,6 +54,17 @@ struct Accuracy {
   double Pct(uint64_t n) const { return receiving ? 100.0 * double(n) / double(receiving) : 0.0; }
 };
 
+// The surface points the lab judges, as the reference tracer takes them (ReferenceTracer::
+// Visibility, ReferenceCache::Visibility): every pixel's world position and normal, valid where
+// the pixel receives light and its point is finite with a unit normal (so the tracer never sees
+// a sky pixel or a degenerate one).
+struct LabSurfacePoints {
+  std::vector<glm::vec3> position, normal;
+  std::vector<uint8_t> valid;
+  size_t size() const { return valid.size(); }
+};
+LabSurfacePoints SurfacePointsOf(const tech::LabBuffers& lab);
+
 Accuracy MeasureAccuracy(const tech::LabBuffers& lab, const uint8_t* reference);
 Accuracy MeasureAccuracy(const tech::LabBuffers& lab, const float* reference);
 // The same over the judged pixels whose world point (LabBuffers::position) is in `region`.

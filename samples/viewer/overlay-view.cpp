@@ -208,15 +208,10 @@ void OverlayView::Trace(const scene::DirectionalLight& light, const tech::Techni
     buildS = std::chrono::duration<double>(Clock::now() - t0).count();
   }
   const tech::LabBuffers& lab = *lab_;
-  std::vector<glm::vec3> positions(lab.size()), normals(lab.size());
-  std::vector<uint8_t> valid(lab.size());
-  for (size_t i = 0; i < lab.size(); ++i) {
-    positions[i] = glm::vec3(lab.position[i]), normals[i] = glm::vec3(lab.normal[i]);
-    valid[i] = lab.receiving(i) ? 1 : 0;
-  }
+  eval::LabSurfacePoints points = eval::SurfacePointsOf(lab);
   std::vector<float> reference(lab.size(), 0.0f);
   auto t0 = Clock::now();
-  labImpl_->tracer->Visibility(positions.data(), normals.data(), valid.data(), lab.size(), ref, reference.data());
+  labImpl_->tracer->Visibility(points.position.data(), points.normal.data(), points.valid.data(), points.size(), ref, reference.data());
   double traceS = std::chrono::duration<double>(Clock::now() - t0).count();
   eval::Accuracy a = eval::MeasureAccuracy(lab, reference.data());
   uint32_t imageHeight = 0;

@@ -22,15 +22,9 @@ TEST(AreaLightLab, BenchJudgesAgainstTheFractionalReferenceOnBothBackends) {
     EXPECT_EQ(run.lightSize, 3.0f);
     EXPECT_EQ(run.lightSamples, eval::ReferenceOptions{}.lightSamples);
     const tech::LabBuffers& f = run.firstFrame;
-    std::vector<glm::vec3> pos(f.size()), nrm(f.size());
-    std::vector<uint8_t> valid(f.size());
-    for (size_t i = 0; i < f.size(); ++i) {
-      pos[i] = glm::vec3(f.position[i]);
-      nrm[i] = glm::vec3(f.normal[i]);
-      valid[i] = f.receiving(i);
-    }
+    eval::LabSurfacePoints p = eval::SurfacePointsOf(f);
     std::vector<float> expected(f.size(), 0.0f);
-    tracer.Visibility(pos.data(), nrm.data(), valid.data(), f.size(), light, expected.data());
+    tracer.Visibility(p.position.data(), p.normal.data(), p.valid.data(), p.size(), light, expected.data());
     EXPECT_EQ(run.firstReference, expected);
     size_t penumbra = std::count_if(expected.begin(), expected.end(), [](float v) { return v > 0.0f && v < 1.0f; });
     EXPECT_GT(penumbra, 50u);

@@ -54,15 +54,9 @@ class LabAnalyticTest : public BackendTest {
     lab = r.ReadLab();
     layers = r.technique().Layers();
     eval::ReferenceTracer tracer(s);
-    std::vector<glm::vec3> pos(lab.size()), nrm(lab.size());
-    std::vector<uint8_t> valid(lab.size());
-    for (size_t i = 0; i < lab.size(); ++i) {
-      pos[i] = glm::vec3(lab.position[i]);
-      nrm[i] = glm::vec3(lab.normal[i]);
-      valid[i] = lab.receiving(i);
-    }
+    eval::LabSurfacePoints p = eval::SurfacePointsOf(lab);
     reference.assign(lab.size(), 0);
-    tracer.Visibility(pos.data(), nrm.data(), valid.data(), lab.size(), eval::ReferenceLight::FromScene(s.light), reference.data());
+    tracer.Visibility(p.position.data(), p.normal.data(), p.valid.data(), p.size(), eval::ReferenceLight::FromScene(s.light), reference.data());
   }
 
   // Receiving pixels within `radius` pixels of one whose reference value differs.

@@ -145,15 +145,9 @@ double Misclassified(Device& device, const scene::Scene& s, const std::string& t
   r->RenderFrame(s.camera, s.light, tech::LitPass::Lab);
   tech::LabBuffers lab = r->ReadLab();
   eval::ReferenceTracer tracer(s);
-  std::vector<glm::vec3> pos(lab.size()), nrm(lab.size());
-  std::vector<uint8_t> valid(lab.size());
-  for (size_t i = 0; i < lab.size(); ++i) {
-    pos[i] = glm::vec3(lab.position[i]);
-    nrm[i] = glm::vec3(lab.normal[i]);
-    valid[i] = lab.receiving(i);
-  }
+  eval::LabSurfacePoints p = eval::SurfacePointsOf(lab);
   std::vector<float> reference(lab.size(), 0.0f);
-  tracer.Visibility(pos.data(), nrm.data(), valid.data(), lab.size(), eval::ReferenceLight::FromScene(s.light), reference.data());
+  tracer.Visibility(p.position.data(), p.normal.data(), p.valid.data(), p.size(), eval::ReferenceLight::FromScene(s.light), reference.data());
   return eval::MeasureAccuracy(lab, reference.data()).misclassifiedPct();
 }
 
