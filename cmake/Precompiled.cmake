@@ -1,8 +1,8 @@
 # Precompiled headers for the targets with many sources. Every translation unit of this project
 # preprocesses 65,000-100,000 lines, almost all of them the standard library (<filesystem>,
 # <functional>, <algorithm> through sp/rhi/rhi.h) and, in the tests, GoogleTest: parsing that once
-# per target instead of once per file takes about 40% off a test file's compile (copy-test.cpp:
-# 6.8 s -> 3.9 s of CPU at -O3, DEVELOPERS.md "Build time").
+# per target instead of once per file takes 20-40% off a test file's compile (copy-test.cpp:
+# 6.8 s -> 3.9 s of CPU at -O3; DEVELOPERS.md, "Build time: precompiled headers").
 #
 # Only headers that no source changes with a #define before including them: no stb, tinygltf or
 # nlohmann/json here. The RHI's own targets (sp_rhi_core, sp_hlsl, the backends) get them only in
