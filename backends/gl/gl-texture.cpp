@@ -106,7 +106,10 @@ static void CreateStaging(GLTexture& t, const SUBRESOURCE_DATA* init) {
       l.offset = size;
       size += uint64_t(l.depthPitch) * l.depth;
     }
-  std::vector<uint8_t> image(size, 0);
+  // The buffer is never smaller than 4 bytes (a 1x1 R8 or R16 staging texture is 1-2); the
+  // initial image glNamedBufferStorage copies from must be as large as the buffer.
+  const uint64_t storage = std::max<uint64_t>(size, 4);
+  std::vector<uint8_t> image(storage, 0);
   if (init) {
     for (uint32_t i = 0; i < t.subresources.size(); ++i) {
       const SubresourceLayout& l = t.subresources[i];
@@ -118,7 +121,7 @@ static void CreateStaging(GLTexture& t, const SUBRESOURCE_DATA* init) {
                       static_cast<const uint8_t*>(init[i].pSysMem) + size_t(k) * depthPitch + size_t(j) * rowPitch, l.rowPitch);
     }
   }
-  t.staging.Create(GLsizeiptr(std::max<uint64_t>(size, 4)), image.data());
+  t.staging.Create(GLsizeiptr(storage), image.data());
   t.glPacked.assign(t.subresources.size(), 0);
 }
 
