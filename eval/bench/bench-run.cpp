@@ -104,6 +104,7 @@ RunResult RunOne(const RunSpec& spec, eval::ReferenceCache& reference, const Pro
     r.cpuSeries.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
     triangles.push_back(double(tech.Stats().trianglesSubmitted));
     layers.push_back(double(tech.Stats().layersRendered));
+    if (auto* refinement = dynamic_cast<const tech::AsmCounterSource*>(&tech)) r.asmRefinement.push_back(refinement->AsmFrameCounters());
   }
   std::vector<tech::FrameTimes> times = timer.Collect(ctx, true);
   renderer.SetGpuTimer(nullptr);

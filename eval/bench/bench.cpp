@@ -182,6 +182,19 @@ nlohmann::json RunToJson(const RunResult& r, const std::map<std::string, std::st
                        {"umbra_mean_visibility", Round(a.umbraMeanVisibility(), 1e6)}};
     m["regions"] = regions;
   }
+  if (!r.asmRefinement.empty()) {
+    json frames = json::array();
+    int converged = -1;
+    uint64_t unserved = 0;
+    for (size_t i = 0; i < r.asmRefinement.size(); ++i) {
+      const tech::AsmCounters& c = r.asmRefinement[i];
+      frames.push_back({{"iterations", c.iterations}, {"requests", c.requests}, {"pages_rendered", c.pagesRendered},
+                        {"evicted", c.evicted}, {"unserved", c.unserved}, {"resident", c.resident}});
+      if (converged < 0 && c.pagesRendered == 0) converged = int(i);
+      unserved += c.unserved;
+    }
+    m["asm_refinement"] = {{"frames", frames}, {"converged_frame", converged}, {"unserved_total", unserved}};
+  }
   if (!r.hpsmDecisions.empty()) {
     json h = json::object();
     for (const auto& [k, v] : r.hpsmDecisions) h[k] = Round(v, 1e4);

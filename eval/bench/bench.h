@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "metrics.h"
+#include <sp/tech/asm-counters.h>
 #include "reference.h"
 
 namespace sp::bench {
@@ -71,6 +72,10 @@ struct RunResult {
   // Accelerated filters (accel=hpsm|minmax with counters): fractions of the last timed frame's
   // lookups decided by min/max ("minmax"), by a plane ("plane"), sent to the filter ("filtered").
   std::map<std::string, double> hpsmDecisions;
+  // Adaptive shadow maps (asm): what each timed frame's refinement did, frames 0..N-1 (empty for
+  // other techniques). The JSON adds the frame the refinement first rendered no page in
+  // ("converged_frame", -1 if none) and the unserved requests over all frames.
+  std::vector<tech::AsmCounters> asmRefinement;
 
   std::vector<double> flickerSeries;        // frames 1..N-1
   std::vector<double> misclassifiedSeries, gpuTotalSeries, cpuSeries;  // frames 0..N-1

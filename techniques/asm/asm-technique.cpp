@@ -17,7 +17,7 @@
 
 #include <sp/tech/technique.h>
 
-#include "asm/asm-counters.h"
+#include <sp/tech/asm-counters.h>
 #include "asm/page-allocator.h"
 #include "scene-fit.h"
 

@@ -181,6 +181,39 @@ TEST(BenchHpsm, RecordsTheDecisionFractionsOfAnAcceleratedFilter) {
     EXPECT_FALSE(bench::RunToJson(plain, {})["metrics"].contains("hpsm_decisions"));
   }
 }
+// Adaptive shadow maps record each frame's refinement: on a static view the first frame renders
+// pages and a later one renders none (converged), with nothing unserved in the default pool; other
+// techniques record nothing. Both backends give the same counts.
+TEST(BenchAsm, RecordsTheRefinementOfEveryFrame) {
+  scene::Scene s = scene::MakeBuiltinScene("default");
+  eval::ReferenceCache cache(s, CacheDir());
+  std::vector<std::vector<tech::AsmCounters>> perBackend;
+  for (Backend backend : {Backend::Vulkan, Backend::OpenGL}) {
+    bench::RunSpec spec = Spec(s, nullptr, backend);  // no path: the scene camera, still
+    spec.technique = "asm";
+    spec.params = {};
+    spec.validate = true;
+    bench::RunResult r = bench::RunOne(spec, cache);
+    EXPECT_EQ(r.validationErrors, 0u) << BackendName(backend);
+    ASSERT_EQ(r.asmRefinement.size(), size_t(spec.frames)) << BackendName(backend);
+    EXPECT_GT(r.asmRefinement[0].pagesRendered, 0u) << "the first frame refines";
+    EXPECT_EQ(r.asmRefinement.back().pagesRendered, 0u) << "a static view converges";
+    nlohmann::json a = bench::RunToJson(r, {})["metrics"]["asm_refinement"];
+    ASSERT_TRUE(a.is_object());
+    EXPECT_EQ(a["frames"].size(), size_t(spec.frames));
+    EXPECT_GE(a["converged_frame"].get<int>(), 1);
+    EXPECT_EQ(a["unserved_total"].get<uint64_t>(), 0u);
+    perBackend.push_back(r.asmRefinement);
+  }
+  for (size_t i = 0; i < perBackend[0].size(); ++i) {
+    EXPECT_EQ(perBackend[0][i].requests, perBackend[1][i].requests) << "frame " << i;
+    EXPECT_EQ(perBackend[0][i].pagesRendered, perBackend[1][i].pagesRendered) << "frame " << i;
+  }
+  bench::RunResult basic = bench::RunOne(Spec(s, nullptr, Backend::Vulkan), cache);
+  EXPECT_TRUE(basic.asmRefinement.empty());
+  EXPECT_FALSE(bench::RunToJson(basic, {})["metrics"].contains("asm_refinement"));
+}
+
 class BenchFlicker : public ::testing::TestWithParam<Backend> {};
 
 TEST_P(BenchFlicker, StaticCameraGivesZero) {

@@ -9,7 +9,7 @@
 #include "backend-test.h"
 #include "floating-box.h"
 #include "technique-renderer.h"
-#include "asm/asm-counters.h"
+#include <sp/tech/asm-counters.h>
 #include "metrics.h"
 #include "reference.h"
 #include <sp/tech/renderer.h>

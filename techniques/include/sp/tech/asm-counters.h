@@ -1,5 +1,5 @@
-// Adaptive shadow maps: what the last frame's refinement did, for tests and the bench
-// (dynamic_cast a Technique to AsmCounterSource).
+// Adaptive shadow maps: what the last frame's refinement did, for tests and the bench (dynamic_cast
+// a Technique to AsmCounterSource): public so the bench can record it per frame.
 #pragma once
 #include <cstdint>
 
