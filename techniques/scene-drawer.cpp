@@ -114,6 +114,33 @@ uint64_t SceneDrawer::DrawDepth(DeviceContext& ctx, const glm::mat4& viewProj, c
   return triangles;
 }
 
+void SceneDrawer::DrawDepthIndirect(DeviceContext& ctx, const DepthShaders& shaders, Buffer* args, uint32_t firstArgsByte) {
+  SetFrame(ctx, glm::mat4(1.0f), nullptr);
+  gpu_.BindGeometry(ctx);
+  ctx.IASetInputLayout(depthLayout_.get());
+  ctx.VSSetShader(shaders.vs ? shaders.vs : depthVs_.get());
+  ctx.PSSetShader(shaders.ps);
+  BindConstants(ctx, ShaderStage::Vertex);
+  if (shaders.ps) BindConstants(ctx, ShaderStage::Pixel);
+  uint32_t offset = firstArgsByte;
+  for (const scene::DrawItem& d : gpu_.draws()) {
+    SetObject(ctx, d.instance);
+    ctx.DrawIndexedInstancedIndirect(args, offset);
+    offset += 20;
+  }
+}
+
+std::vector<uint32_t> SceneDrawer::IndirectArgsOfDraws() const {
+  std::vector<uint32_t> words;
+  for (const scene::DrawItem& d : gpu_.draws()) {
+    // D3D11_DRAW_INDEXED_INSTANCED_INDIRECT_ARGS: IndexCountPerInstance, InstanceCount,
+    // StartIndexLocation, BaseVertexLocation, StartInstanceLocation.
+    uint32_t item[5] = {d.indexCount, 0, d.firstIndex, uint32_t(d.baseVertex), 0};
+    words.insert(words.end(), item, item + 5);
+  }
+  return words;
+}
+
 uint64_t SceneDrawer::DrawDepthLayered(DeviceContext& ctx, const glm::mat4* viewProj, uint32_t layers,
                                        const std::function<bool(uint32_t instance, uint32_t layer)>& keep) {
   Device& device = *ctx.GetDevice();

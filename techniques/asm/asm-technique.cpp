@@ -10,6 +10,14 @@
 // renders depth into each new page (viewport and scissor on its pool rectangle, the light's
 // projection cropped to the page). Levels 0..resident_levels-1 stay resident, so every point has
 // a page. The lookup is asm/shadow.hlsli.
+//
+// allocation=gpu is the GPU-driven variant (asm/gpu-allocation.h): the same analysis, but the
+// request stream never reaches the CPU; allocation, page-table updates and page rendering
+// (indirect draws) run on the GPU every iteration, and pages stay cached across frames until the
+// light's fit changes. mark=visible makes the analysis request the page of every visible sample
+// (with its filter footprint's neighbours) instead of only shadow boundaries, as virtual shadow
+// maps do; it works with either allocation.
+#include <algorithm>
 #include <cstring>
 #include <stdexcept>
 #include <string>
@@ -18,6 +26,7 @@
 #include <sp/tech/technique.h>
 
 #include <sp/tech/asm-counters.h>
+#include "asm/gpu-allocation.h"
 #include "asm/page-allocator.h"
 #include "scene-fit.h"
 
@@ -48,6 +57,9 @@ class AsmTechnique final : public Technique, public AsmCounterSource {
         {ParamSpec::Int, "pool_pages", "pages per side of the physical pool (the pool holds pool_pages^2 pages, pool_pages * page_size texels per side)", "16", 1, 256, {}},
         {ParamSpec::Int, "resident_levels", "coarse levels 0..n-1 kept resident at all times (so every point has a page, and shadows too small for the analysis to see at coarser levels are still drawn)", "4", 1, 6, {}},
         {ParamSpec::Int, "iterations", "refinement iterations (analysis, readback, allocation, page rendering) per frame at most", "4", 1, 64, {}},
+        {ParamSpec::Choice, "allocation", "readback: the paper's refinement (requests read back, pages allocated and drawn by the CPU); gpu: allocation, page tables and page drawing on the GPU, nothing read back", "readback", 0, 0, {"readback", "gpu"}},
+        {ParamSpec::Choice, "mark", "which pixels request pages: edges (Sobel boundaries of the shadow, the paper) or visible (every visible sample and its filter footprint, as virtual shadow maps)", "edges", 0, 0, {"edges", "visible"}},
+        {ParamSpec::Int, "gpu_batch", "allocation=gpu: pages allocated and drawn per iteration at most (slices of the scratch depth array); the rest wait for the next iteration", "64", 1, 2048, {}},
         {ParamSpec::Float, "edge_threshold", "Sobel gradient magnitude of the shadow term above which a pixel is a shadow boundary", "0.1", 0.0, 8.0, {}},
         {ParamSpec::Int, "depth_bias", "D3D11 DepthBias (units of the depth format)", "200", -1e7, 1e7, {}},
         {ParamSpec::Float, "slope_bias", "D3D11 SlopeScaledDepthBias", "2.0", -100, 100, {}},
@@ -83,6 +95,11 @@ class AsmTechnique final : public Technique, public AsmCounterSource {
       throw std::invalid_argument("pool_pages: " + std::to_string(poolPages_) + "^2 = " + std::to_string(capacity) + " pages cannot hold the " +
                                   std::to_string(pinned) + " pages of resident levels 0.." + std::to_string(resident - 1) +
                                   " and leave room for refinement; raise pool_pages or lower resident_levels");
+    gpuAllocation_ = p.getChoice("allocation") == "gpu";
+    markVisible_ = p.getChoice("mark") == "visible";
+    if (gpuAllocation_ && !device.Info().vsRenderTargetArrayIndex)
+      throw std::invalid_argument(std::string("allocation: gpu draws each new page into its own slice with SV_RenderTargetArrayIndex from the vertex shader, which this ") +
+                                  BackendName(device.GetBackend()) + " device lacks (DeviceInfo::vsRenderTargetArrayIndex)");
     device_ = &device;
     allocator_ = std::make_unique<PageAllocator>(uint32_t(capacity));
     pool_ = MakeDepthMap(device, poolSize, poolSize, "asm page pool");
@@ -91,7 +108,7 @@ class AsmTechnique final : public Technique, public AsmCounterSource {
     td.Width = td.Height = 1u << maxLevel_;
     td.MipLevels = maxLevel_ + 1;
     td.Format = FORMAT_R32_UINT;
-    td.BindFlags = BIND_SHADER_RESOURCE;
+    td.BindFlags = BIND_SHADER_RESOURCE | (gpuAllocation_ ? BIND_UNORDERED_ACCESS : 0u);
     table_ = device.CreateTexture2D(td);
     table_->SetDebugName("asm page tables");
     tableSrv_ = device.CreateShaderResourceView(table_.get());
@@ -129,13 +146,18 @@ class AsmTechnique final : public Technique, public AsmCounterSource {
     clearDepth_ = device.CreateDepthStencilState(dd);
 
     constants_ = MakeConstantBuffer(device, sizeof(Constants), "AsmShadow constants");
-    analysisConstants_ = MakeConstantBuffer(device, 16, "AsmAnalysis constants");
+    analysisConstants_ = MakeConstantBuffer(device, sizeof(AnalysisConstants), "AsmAnalysis constants");
     clearVs_ = device.CreateVertexShader(CompileTechniqueShader("asm/analysis.hlsl", "vs_5_0", "VSClearPage"));
     viewVs_ = device.CreateVertexShader(CompileTechniqueShader("asm/analysis.hlsl", "vs_5_0", "VSView"));
     viewPs_ = device.CreatePixelShader(CompileTechniqueShader("asm/analysis.hlsl", "ps_5_0", "PSView"));
     analyzeCs_ = device.CreateComputeShader(CompileTechniqueShader("asm/analysis.hlsl", "cs_5_0", "CSAnalyze"));
     lastFit_ = glm::mat4(0.0f);
     viewWidth_ = viewHeight_ = 0;
+    gpu_.reset();
+    if (gpuAllocation_) {
+      uint32_t batch = uint32_t(std::min<uint64_t>(uint64_t(p.getInt("gpu_batch")), capacity - pinned));
+      gpu_ = std::make_unique<asmap::GpuAllocation>(device, uint32_t(capacity), pageSize_, poolPages_, batch, maxLevel_, residentLevels_);
+    }
   }
 
   void RenderShadows(DeviceContext& ctx, SceneDrawer& drawer, const FrameInputs& frame) override {
@@ -146,8 +168,10 @@ class AsmTechnique final : public Technique, public AsmCounterSource {
     EnsureViewTargets(frame.width, frame.height);
     counters_ = {};
     trianglesSubmitted_ = 0;
+    gpuRead_ = false;
     // The pages hold depth for one light view: a new light direction or scene bounds invalidate them.
-    if (lightViewProj_ != lastFit_) {
+    bool invalidated = lightViewProj_ != lastFit_;
+    if (invalidated) {
       allocator_->Reset();
       for (uint32_t l = 0; l <= maxLevel_; ++l) {
         std::fill(tables_[l].begin(), tables_[l].end(), kNotResident);
@@ -155,17 +179,31 @@ class AsmTechnique final : public Technique, public AsmCounterSource {
       }
       lastFit_ = lightViewProj_;
     }
-    allocator_->BeginFrame();
-    std::vector<PageKey> fresh;
-    for (uint32_t l = 0; l < residentLevels_; ++l)
-      for (uint32_t y = 0; y < (1u << l); ++y)
-        for (uint32_t x = 0; x < (1u << l); ++x) Serve({l, x, y}, true, fresh);
-    RenderPages(ctx, drawer, fresh);
+    // The resident levels: requested every frame by the CPU (allocation=gpu: only after an
+    // invalidation, then handed to the GPU's slots as pinned).
+    if (!gpuAllocation_ || invalidated) {
+      allocator_->BeginFrame();
+      std::vector<PageKey> fresh;
+      for (uint32_t l = 0; l < residentLevels_; ++l)
+        for (uint32_t y = 0; y < (1u << l); ++y)
+          for (uint32_t x = 0; x < (1u << l); ++x) Serve({l, x, y}, true, fresh);
+      RenderPages(ctx, drawer, fresh);
+      if (gpuAllocation_) {
+        std::vector<std::pair<uint32_t, uint32_t>> pinned;
+        for (const PageKey& k : fresh) pinned.push_back({(k.level << 28) | (k.y << 14) | k.x, *allocator_->SlotOf(k)});
+        gpu_->Reset(ctx, pinned);
+      }
+    }
     // Cleared on the GPU: at 131072 effective texels in 64-texel pages the bitmap is 700 KB, too
     // much to upload from a CPU array of zeros every frame.
     const uint32_t zero[4] = {0, 0, 0, 0};
     ctx.ClearUnorderedAccessViewUint(requestedUav_.get(), zero);
+    if (gpuAllocation_) {
+      RefineOnGpu(ctx, drawer, frame);
+      return;
+    }
 
+    std::vector<PageKey> fresh;
     for (uint32_t it = 0; it < iterations_; ++it) {
       std::vector<uint32_t> requests = Analyze(ctx, drawer, frame);
       ++counters_.iterations;
@@ -188,12 +226,51 @@ class AsmTechnique final : public Technique, public AsmCounterSource {
   }
 
   ShadowStats Stats() const override {
+    if (gpuAllocation_) AsmFrameCounters();  // the triangles drawn into pages are counted on the GPU
     uint64_t poolTexels = uint64_t(poolPages_ * pageSize_) * (poolPages_ * pageSize_);
-    uint64_t bytes = poolTexels * 4 + tableBytes_ + uint64_t(bitmapWords_) * 4 + requestBytes_;
+    uint64_t bytes = poolTexels * 4 + tableBytes_ + uint64_t(bitmapWords_) * 4 + requestBytes_ + (gpu_ ? gpu_->Bytes() : 0);
     return {bytes, trianglesSubmitted_, counters_.pagesRendered};
   }
   std::vector<ShadowLayer> Layers() const override { return {{poolPages_ * pageSize_, poolPages_ * pageSize_}}; }
-  AsmCounters AsmFrameCounters() const override { return counters_; }
+  AsmCounters AsmFrameCounters() const override {
+    if (!gpuAllocation_ || gpuRead_) return counters_;
+    // allocation=gpu keeps its counters on the GPU; reading them waits for the frame's work.
+    asmap::GpuAllocation::Counters g = gpu_->Read(*device_->GetImmediateContext());
+    counters_.requests = g.requests;
+    counters_.pagesRendered += g.rendered;
+    counters_.evicted = g.evicted;
+    counters_.unserved = g.unserved;
+    counters_.resident = g.resident;
+    trianglesSubmitted_ += uint64_t(g.rendered) * sceneTriangles_;
+    gpuRead_ = true;
+    return counters_;
+  }
+
+  // Every resident page (level << 28 | y << 14 | x), ascending, read back from the page tables
+  // on the GPU (what the lookup sees, whichever mode wrote them).
+  std::vector<uint32_t> AsmResidentPages() const override {
+    DeviceContext& ctx = *device_->GetImmediateContext();
+    TEXTURE2D_DESC d = table_->GetDesc();
+    d.Usage = USAGE_STAGING;
+    d.BindFlags = 0;
+    d.CPUAccessFlags = CPU_ACCESS_READ;
+    Ref<Texture2D> staging = device_->CreateTexture2D(d);
+    ctx.CopyResource(staging.get(), table_.get());
+    std::vector<uint32_t> keys;
+    for (uint32_t l = 0; l <= maxLevel_; ++l) {
+      uint32_t n = 1u << l, mip = maxLevel_ - l;
+      MAPPED_SUBRESOURCE m;
+      if (!ctx.Map(staging.get(), mip, MAP_READ, 0, &m)) throw std::runtime_error("asm: Map of the page-table readback failed");
+      for (uint32_t y = 0; y < n; ++y) {
+        const uint32_t* row = reinterpret_cast<const uint32_t*>(static_cast<const uint8_t*>(m.pData) + size_t(y) * m.RowPitch);
+        for (uint32_t x = 0; x < n; ++x)
+          if (row[x] != kNotResident) keys.push_back((l << 28) | (y << 14) | x);
+      }
+      ctx.Unmap(staging.get(), mip);
+    }
+    std::sort(keys.begin(), keys.end());
+    return keys;
+  }
 
  private:
   // cbuffer AsmShadow in shaders-hlsl/asm/shadow.hlsli.
@@ -202,6 +279,41 @@ class AsmTechnique final : public Technique, public AsmCounterSource {
     float pageSize, maxLevel, poolPages, poolSize;
   };
   static_assert(sizeof(Constants) == 80);
+  // cbuffer AsmAnalysis in shaders-hlsl/asm/analysis.hlsl.
+  struct AnalysisConstants {
+    uint32_t w, h, maxLevel;
+    float threshold;
+    uint32_t markVisible;
+    float pageSize;
+    uint32_t pad[2];
+  };
+
+  // allocation=gpu: `iterations` analyses, each followed by the GPU's allocation and page
+  // drawing; the CPU cannot know when nothing is left to do, so it records every iteration (an
+  // iteration with nothing missing dispatches empty passes and draws no instances).
+  void RefineOnGpu(DeviceContext& ctx, SceneDrawer& drawer, const FrameInputs& frame) {
+    sceneTriangles_ = 0;
+    for (const scene::DrawItem& d : drawer.gpu().draws()) sceneTriangles_ += d.indexCount / 3;
+    gpu_->BeginFrame(ctx);
+    asmap::GpuAllocationTargets t;
+    t.table = table_.get();
+    t.tableSrv = tableSrv_.get();
+    t.requestsSrv = requestsSrv_.get();
+    t.requestsUav = requestsUav_.get();
+    t.requestedUav = requestedUav_.get();
+    t.shadowConstants = constants_.get();
+    t.poolDsv = pool_.dsv.get();
+    t.pageRasterizer = pageRasterizer_.get();
+    t.requestCapacity = uint32_t(requestBytes_ / 4);
+    for (uint32_t it = 0; it < iterations_; ++it) {
+      {
+        GpuTimer::Scope timed(frame.timer, ctx, "analysis");
+        DrawAnalysis(ctx, drawer, frame);
+      }
+      gpu_->Refine(ctx, drawer, t);
+      ++counters_.iterations;
+    }
+  }
 
   static Ref<Buffer> MakeStaging(Device& device, uint32_t bytes, const char* name) {
     BUFFER_DESC d;
@@ -300,12 +412,13 @@ class AsmTechnique final : public Technique, public AsmCounterSource {
     dd.BindFlags = BIND_DEPTH_STENCIL;
     viewDepth_ = device.CreateTexture2D(dd);
     viewDsv_ = device.CreateDepthStencilView(viewDepth_.get());
-    // At most one request per pixel and one per page: the stream cannot overflow.
+    // At most one request per pixel (four with mark=visible: the filter footprint's pages) and one
+    // per page: the stream cannot overflow.
     uint64_t pages = ((uint64_t(1) << (2 * (maxLevel_ + 1))) - 1) / 3;
-    uint32_t capacity = uint32_t(std::min<uint64_t>(uint64_t(w) * h, pages));
+    uint32_t capacity = uint32_t(std::min<uint64_t>(uint64_t(w) * h * (markVisible_ ? 4 : 1), pages));
     BUFFER_DESC bd;
     bd.ByteWidth = capacity * 4;
-    bd.BindFlags = BIND_UNORDERED_ACCESS;
+    bd.BindFlags = BIND_UNORDERED_ACCESS | (gpuAllocation_ ? BIND_SHADER_RESOURCE : 0u);
     bd.MiscFlags = RESOURCE_MISC_BUFFER_STRUCTURED;
     bd.StructureByteStride = 4;
     requests_ = device.CreateBuffer(bd);
@@ -315,6 +428,7 @@ class AsmTechnique final : public Technique, public AsmCounterSource {
     ud.ViewDimension = UAV_DIMENSION_BUFFER;
     ud.Buffer = {0, capacity, BUFFER_UAV_FLAG_APPEND};
     requestsUav_ = device.CreateUnorderedAccessView(requests_.get(), &ud);
+    requestsSrv_ = gpuAllocation_ ? device.CreateShaderResourceView(requests_.get()) : nullptr;
     requestsStaging_ = MakeStaging(device, capacity * 4, "asm requests readback");
     requestBytes_ = uint64_t(capacity) * 4;
   }
@@ -323,6 +437,19 @@ class AsmTechnique final : public Technique, public AsmCounterSource {
   // and the readback of the request stream (waits for the GPU: the paper's CpuReadback).
   std::vector<uint32_t> Analyze(DeviceContext& ctx, SceneDrawer& drawer, const FrameInputs& frame) {
     GpuTimer::Scope timed(frame.timer, ctx, "analysis");
+    DrawAnalysis(ctx, drawer, frame);
+    ctx.CopyStructureCount(countBuffer_.get(), 0, requestsUav_.get());
+    ctx.CopyResource(countStaging_.get(), countBuffer_.get());
+    uint32_t count = ReadWords(ctx, countStaging_.get(), 1)[0];
+    if (uint64_t(count) * 4 > requestBytes_) throw std::runtime_error("asm: request count " + std::to_string(count) + " exceeds the request buffer");
+    if (count == 0) return {};
+    BOX box{0, 0, 0, count * 4, 1, 1};
+    ctx.CopySubresourceRegion(requestsStaging_.get(), 0, 0, 0, 0, requests_.get(), 0, &box);
+    return ReadWords(ctx, requestsStaging_.get(), count);
+  }
+
+  // The camera's view with the current pages, and the pass appending this frame's new requests.
+  void DrawAnalysis(DeviceContext& ctx, SceneDrawer& drawer, const FrameInputs& frame) {
     ShaderResourceView* none[2] = {};
     ctx.CSSetShaderResources(0, 2, none);
     RenderTargetView* rtv = viewRtv_.get();
@@ -338,10 +465,7 @@ class AsmTechnique final : public Technique, public AsmCounterSource {
     trianglesViewed_ = drawer.DrawDepth(ctx, frame.cameraProj * frame.cameraView, [](uint32_t) { return true; }, {viewVs_.get(), viewPs_.get()});
     ctx.OMSetRenderTargets(0, nullptr, nullptr);
 
-    struct {
-      uint32_t w, h, maxLevel;
-      float threshold;
-    } ac{viewWidth_, viewHeight_, maxLevel_, edgeThreshold_};
+    AnalysisConstants ac{viewWidth_, viewHeight_, maxLevel_, edgeThreshold_, markVisible_ ? 1u : 0u, float(pageSize_), {0, 0}};
     ctx.UpdateSubresource(analysisConstants_.get(), 0, nullptr, &ac, 0, 0);
     ctx.CSSetShader(analyzeCs_.get());
     ctx.CSSetConstantBuffers(0, {analysisConstants_.get()});
@@ -353,15 +477,6 @@ class AsmTechnique final : public Technique, public AsmCounterSource {
     UnorderedAccessView* noUavs[2] = {};
     ctx.CSSetUnorderedAccessViews(0, 2, noUavs, nullptr);
     ctx.CSSetShaderResources(0, 2, none);
-
-    ctx.CopyStructureCount(countBuffer_.get(), 0, requestsUav_.get());
-    ctx.CopyResource(countStaging_.get(), countBuffer_.get());
-    uint32_t count = ReadWords(ctx, countStaging_.get(), 1)[0];
-    if (uint64_t(count) * 4 > requestBytes_) throw std::runtime_error("asm: request count " + std::to_string(count) + " exceeds the request buffer");
-    if (count == 0) return {};
-    BOX box{0, 0, 0, count * 4, 1, 1};
-    ctx.CopySubresourceRegion(requestsStaging_.get(), 0, 0, 0, 0, requests_.get(), 0, &box);
-    return ReadWords(ctx, requestsStaging_.get(), count);
   }
 
   static std::vector<uint32_t> ReadWords(DeviceContext& ctx, Buffer* staging, uint32_t n) {
@@ -385,6 +500,11 @@ class AsmTechnique final : public Technique, public AsmCounterSource {
   uint32_t bitmapWords_ = 0;
   Ref<Buffer> requested_, requests_, requestsStaging_, countBuffer_, countStaging_;
   Ref<UnorderedAccessView> requestedUav_, requestsUav_;
+  Ref<ShaderResourceView> requestsSrv_;
+  bool gpuAllocation_ = false, markVisible_ = false;
+  std::unique_ptr<asmap::GpuAllocation> gpu_;
+  uint64_t sceneTriangles_ = 0;
+  mutable bool gpuRead_ = false;
   Ref<Texture2D> view_, viewDepth_;
   Ref<RenderTargetView> viewRtv_;
   Ref<ShaderResourceView> viewSrv_;
@@ -397,8 +517,9 @@ class AsmTechnique final : public Technique, public AsmCounterSource {
   Ref<PixelShader> viewPs_;
   Ref<ComputeShader> analyzeCs_;
   glm::mat4 lightViewProj_{1.0f}, lastFit_{0.0f};
-  uint64_t trianglesSubmitted_ = 0, trianglesViewed_ = 0;
-  AsmCounters counters_;
+  mutable uint64_t trianglesSubmitted_ = 0;
+  uint64_t trianglesViewed_ = 0;
+  mutable AsmCounters counters_;
 };
 
 }  // namespace

@@ -2,11 +2,12 @@
 // a Technique to AsmCounterSource): public so the bench can record it per frame.
 #pragma once
 #include <cstdint>
+#include <vector>
 
 namespace sp::tech {
 
 struct AsmCounters {
-  uint32_t iterations = 0;     // analyses run (each: camera view, Sobel pass, readback)
+  uint32_t iterations = 0;     // analyses run (each: camera view, Sobel pass, then readback or GPU allocation)
   uint32_t requests = 0;       // pages requested by the analyses (de-duplicated per frame)
   uint32_t pagesRendered = 0;  // pages allocated and rendered (resident levels included)
   uint32_t evicted = 0;        // pages evicted (LRU) to make room
@@ -18,6 +19,8 @@ class AsmCounterSource {
  public:
   virtual ~AsmCounterSource() = default;
   virtual AsmCounters AsmFrameCounters() const = 0;
+  // Every resident page as (level << 28 | y << 14 | x), ascending, read back from the page tables.
+  virtual std::vector<uint32_t> AsmResidentPages() const = 0;
 };
 
 }  // namespace sp::tech

@@ -123,6 +123,14 @@ class SceneDrawer {
   };
   uint64_t DrawDepth(DeviceContext& ctx, const glm::mat4& viewProj, const std::function<bool(uint32_t instance)>& keep,
                      const DepthShaders& shaders);
+  // Every draw item once, with DrawIndexedInstancedIndirect: item i's arguments are the 20 bytes at
+  // firstArgsByte + 20 i of `args` (RESOURCE_MISC_DRAWINDIRECT_ARGS), written on the GPU, so the
+  // instance count can come from a compute pass the CPU never reads (adaptive shadow maps'
+  // allocation=gpu draws each new page as one instance). IndirectArgsOfDraws gives the items'
+  // arguments with InstanceCount 0, in that order. `shaders` as DrawDepth's; the triangle count
+  // is the GPU's to know, so none is returned.
+  void DrawDepthIndirect(DeviceContext& ctx, const DepthShaders& shaders, Buffer* args, uint32_t firstArgsByte);
+  std::vector<uint32_t> IndirectArgsOfDraws() const;
   // One pass into `layers` layers of a layered depth target (a DSV_DIMENSION_TEXTURE2DARRAY
   // view of that many slices, bound by the caller with viewport and rasterizer state): layer l is
   // drawn with viewProj[l], and each draw item is submitted once, instanced once per layer

@@ -1,0 +1,184 @@
+// Adaptive shadow maps, allocation=gpu (techniques/asm/gpu-allocation.cpp): the refinement's
+// allocation done on the GPU, with no CPU readback. After the analysis (asm/analysis.hlsl) has
+// appended this iteration's requests (pages not requested before in this frame):
+//  CSPrepare       resets the iteration's counts and the age histogram, sizes CSTouch's dispatch;
+//  CSTouch         a request whose page is resident marks its slot used this frame; the others
+//                  are appended to the missing list;
+//  CSAgeHistogram  slots that may take a new page (free, or neither pinned nor used this frame)
+//                  counted per age bin: bin 0 free, then oldest first (LRU at frame granularity);
+//  CSAssign        one group: a prefix sum over the bins gives each bin's first rank; the first
+//                  `served` missing pages (at most batchPages, at most the slots available) get a
+//                  slot; writes the indirect arguments of the later passes and the draws;
+//  CSScatter       each available slot takes its rank's missing page: the page it held loses its
+//                  table entry, the new page gains one (both as change records), and the page is
+//                  listed for rendering;
+//  CSDefer         missing pages left over because of batchPages (not for want of slots) lose
+//                  their request bit, so the next iteration's analysis asks for them again;
+//  then asm/gpu-publish.hlsl writes the change records into the page tables, level by level.
+// Counts and counters live in State (word offsets below); the CPU reads them only when the lab
+// asks (AsmFrameCounters), never on the frame's path.
+//! cs_5_0 CSPrepare
+//! cs_5_0 CSTouch
+//! cs_5_0 CSAgeHistogram
+//! cs_5_0 CSAssign
+//! cs_5_0 CSScatter
+//! cs_5_0 CSDefer
+
+cbuffer AsmGpu : register(b0) {
+  uint frameNumber;   // this frame's number, >= 1; kPinned never occurs
+  uint slotCount;     // pool slots
+  uint batchPages;    // pages rendered per iteration at most (the scratch array's slices)
+  uint drawCount;     // scene draw items (per-draw indirect arguments)
+  uint pad1;
+  uint gpuMaxLevel;
+  uint requestCapacity;
+  uint pad0;
+};
+
+// State words.
+static const uint kRequestCount = 0;  // written by CopyStructureCount
+static const uint kMissing = 1;
+static const uint kServed = 2;
+static const uint kChanges = 3;
+static const uint kAvailable = 4;
+static const uint kCountRequests = 5;  // frame counters: requests, pages rendered, evicted,
+static const uint kCountRendered = 6;  // unserved (cleared by the CPU each frame) ...
+static const uint kCountEvicted = 7;
+static const uint kCountUnserved = 8;
+static const uint kResident = 9;       // ... and pages resident (kept across frames)
+
+// Args words (dispatch and draw arguments).
+static const uint kTouchArgs = 0;
+static const uint kDeferArgs = 3;
+static const uint kPublishArgs = 6;
+static const uint kCopyArgs = 9;    // DrawInstanced: 6 vertices, one instance per new page
+static const uint kDrawArgs = 13;   // DrawIndexedInstanced per scene draw item, 5 words each
+
+static const uint kEmpty = 0xffffffffu;      // a slot's key: no page
+static const uint kPinned = 0xffffffffu;     // a slot's last use: pinned, never evicted
+static const uint kNotResident = 0xffffffffu;
+
+RWByteAddressBuffer State : register(u0);
+RWByteAddressBuffer Args : register(u1);
+RWByteAddressBuffer Slots : register(u2);    // per slot: key, last frame used
+RWByteAddressBuffer Bins : register(u3);     // 256 counts (cursors after CSAssign), 256 first ranks
+RWByteAddressBuffer Missing : register(u4);  // request keys of pages not resident
+RWByteAddressBuffer Changes : register(u5);  // (key, table value) records
+RWByteAddressBuffer NewPages : register(u6); // (key, slot) per page to render
+RWByteAddressBuffer Requested : register(u7);// the analysis' per-frame request bitmap
+
+StructuredBuffer<uint> Requests : register(t0);
+Texture2D<uint> Table : register(t1);
+ByteAddressBuffer DrawTemplate : register(t2);  // per draw item: the 5 argument words
+
+uint KeyLevel(uint k) { return k >> 28; }
+uint2 KeyPage(uint k) { return uint2(k & 0x3fffu, (k >> 14) & 0x3fffu); }
+
+[numthreads(256, 1, 1)] void CSPrepare(uint t : SV_GroupIndex) {
+  Bins.Store(t * 4, 0);
+  if (t != 0) return;
+  uint count = min(State.Load(kRequestCount * 4), requestCapacity);
+  State.Store(kMissing * 4, 0);
+  State.Store(kChanges * 4, 0);
+  State.Store(kServed * 4, 0);
+  uint old;
+  State.InterlockedAdd(kCountRequests * 4, count, old);
+  Args.Store3(kTouchArgs * 4, uint3((count + 63) / 64, 1, 1));
+}
+
+[numthreads(64, 1, 1)] void CSTouch(uint i : SV_DispatchThreadID) {
+  if (i >= min(State.Load(kRequestCount * 4), requestCapacity)) return;
+  uint key = Requests[i];
+  uint2 p = KeyPage(key);
+  uint slot = Table.Load(int3(p, int(gpuMaxLevel - KeyLevel(key))));
+  if (slot != kNotResident) {
+    if (Slots.Load(slot * 8 + 4) != kPinned) Slots.Store(slot * 8 + 4, frameNumber);
+    return;
+  }
+  uint at;
+  State.InterlockedAdd(kMissing * 4, 1, at);
+  Missing.Store(at * 4, key);
+}
+
+// The bin of a slot that may take a page, or -1. Must be the same in both passes.
+int SlotBin(uint slot) {
+  uint2 s = Slots.Load2(slot * 8);
+  if (s.y == kPinned || s.y == frameNumber) return -1;
+  if (s.x == kEmpty) return 0;
+  return int(255u - min(frameNumber - s.y, 254u));
+}
+
+[numthreads(64, 1, 1)] void CSAgeHistogram(uint s : SV_DispatchThreadID) {
+  if (s >= slotCount) return;
+  int bin = SlotBin(s);
+  if (bin < 0) return;
+  uint old;
+  Bins.InterlockedAdd(uint(bin) * 4, 1, old);
+}
+
+groupshared uint gScan[256];
+
+[numthreads(256, 1, 1)] void CSAssign(uint t : SV_GroupIndex) {
+  uint own = Bins.Load(t * 4);
+  gScan[t] = own;
+  GroupMemoryBarrierWithGroupSync();
+  [unroll] for (uint d = 1; d < 256; d <<= 1) {
+    uint add = t >= d ? gScan[t - d] : 0;
+    GroupMemoryBarrierWithGroupSync();
+    gScan[t] += add;
+    GroupMemoryBarrierWithGroupSync();
+  }
+  Bins.Store((256 + t) * 4, gScan[t] - own);  // first rank of the bin
+  Bins.Store(t * 4, 0);                       // CSScatter's cursor
+  uint available = gScan[255];
+  uint missing = State.Load(kMissing * 4);
+  uint take = min(missing, available);
+  uint served = min(take, batchPages);
+  for (uint d = t; d < drawCount; d += 256) {
+    uint4 a = DrawTemplate.Load4(d * 20);
+    Args.Store4((kDrawArgs + d * 5) * 4, uint4(a.x, served, a.z, a.w));
+    Args.Store((kDrawArgs + d * 5 + 4) * 4, 0);
+  }
+  if (t != 0) return;
+  State.Store(kServed * 4, served);
+  State.Store(kAvailable * 4, available);
+  uint old;
+  State.InterlockedAdd(kCountRendered * 4, served, old);
+  State.InterlockedAdd(kCountUnserved * 4, missing - take, old);
+  Args.Store3(kDeferArgs * 4, uint3((missing + 63) / 64, 1, 1));
+  Args.Store3(kPublishArgs * 4, uint3((2 * served + 63) / 64, 1, 1));
+  Args.Store4(kCopyArgs * 4, uint4(6, served, 0, 0));
+}
+
+[numthreads(64, 1, 1)] void CSScatter(uint s : SV_DispatchThreadID) {
+  if (s >= slotCount) return;
+  int bin = SlotBin(s);
+  if (bin < 0) return;
+  uint rank;
+  Bins.InterlockedAdd(uint(bin) * 4, 1, rank);
+  rank += Bins.Load((256 + uint(bin)) * 4);
+  if (rank >= State.Load(kServed * 4)) return;
+  uint key = Missing.Load(rank * 4);
+  uint old = Slots.Load(s * 8), at, unused;
+  if (old != kEmpty) {
+    State.InterlockedAdd(kChanges * 4, 1, at);
+    Changes.Store2(at * 8, uint2(old, kNotResident));
+    State.InterlockedAdd(kCountEvicted * 4, 1, unused);
+  } else {
+    State.InterlockedAdd(kResident * 4, 1, unused);
+  }
+  Slots.Store2(s * 8, uint2(key, frameNumber));
+  State.InterlockedAdd(kChanges * 4, 1, at);
+  Changes.Store2(at * 8, uint2(key, s));
+  NewPages.Store2(rank * 8, uint2(key, s));
+}
+
+[numthreads(64, 1, 1)] void CSDefer(uint i : SV_DispatchThreadID) {
+  uint missing = State.Load(kMissing * 4);
+  if (i >= missing || i < State.Load(kServed * 4) || i >= State.Load(kAvailable * 4)) return;
+  uint key = Missing.Load(i * 4);
+  uint level = KeyLevel(key), n = 1u << level;
+  uint2 p = KeyPage(key);
+  uint bit = ((1u << (2u * level)) - 1u) / 3u + p.y * n + p.x, old;
+  Requested.InterlockedAnd((bit >> 5) * 4, ~(1u << (bit & 31u)), old);
+}

@@ -1,0 +1,141 @@
+// Adaptive shadow maps with allocation=gpu against the paper's readback mode, on both backends:
+// on a static view both modes end with the same resident pages (read back from the page tables
+// each mode wrote) and the same picture, for either marking; a small gpu_batch defers pages to
+// later iterations without losing any; pages stay cached across frames and a light change
+// invalidates them.
+#include <cstdio>
+#include <glm/ext/matrix_transform.hpp>
+
+#include "backend-test.h"
+#include "floating-box.h"
+#include "metrics.h"
+#include "technique-renderer.h"
+#include <sp/tech/asm-counters.h>
+#include <sp/tech/renderer.h>
+
+namespace sp::test {
+namespace {
+
+class AsmGpuAllocationTest : public BackendTest {};
+
+const tech::AsmCounterSource& Source(tech::Renderer& r) { return dynamic_cast<tech::AsmCounterSource&>(r.technique()); }
+
+// A low oblique view along the floating box's shadow edge (x = -1): its near part needs fine
+// levels, its far part coarse ones, so the page set spans many levels.
+scene::Scene ObliqueBox() {
+  scene::Scene s = FloatingBox(true);
+  s.camera.position = {-0.7f, 0.3f, 1.5f};
+  s.camera.target = {-1.1f, 0.0f, -0.5f};
+  s.camera.nearZ = 0.05f;
+  return s;
+}
+
+const TechniqueParams kSmallPages = {{"effective_resolution", "8192"}, {"page_size", "32"}, {"pool_pages", "24"}, {"resident_levels", "2"}, {"iterations", "8"}};
+
+struct Converged {
+  std::vector<uint32_t> pages;
+  std::vector<uint8_t> image;
+  tech::AsmCounters last;
+};
+
+// Frames of one view until a frame renders no page (at most 4).
+Converged RenderUntilConverged(Device& device, const scene::Scene& s, TechniqueParams params, uint32_t w, uint32_t h) {
+  auto r = MakeTechniqueRenderer(device, "asm", s, w, h, params);
+  Converged c;
+  for (int frame = 0; frame < 4; ++frame) {
+    r->RenderFrame(s.camera, s.light);
+    c.last = Source(*r).AsmFrameCounters();
+    if (frame > 0 && c.last.pagesRendered == 0) break;
+  }
+  c.pages = Source(*r).AsmResidentPages();
+  c.image = r->ReadColor();
+  return c;
+}
+
+int DifferentPixels(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b) {
+  int n = 0;
+  for (size_t i = 0; i + 3 < a.size(); i += 4) n += a[i] != b[i] || a[i + 1] != b[i + 1] || a[i + 2] != b[i + 2];
+  return n;
+}
+
+TEST_P(AsmGpuAllocationTest, SamePageSetAndPictureAsReadbackOnAStaticView) {
+  const uint32_t W = 160, H = 96;
+  scene::Scene s = ObliqueBox();
+  for (const char* mark : {"edges", "visible"}) {
+    SCOPED_TRACE(mark);
+    TechniqueParams p = kSmallPages;
+    p["mark"] = mark;
+    p["allocation"] = "readback";
+    Converged readback = RenderUntilConverged(device(), s, p, W, H);
+    p["allocation"] = "gpu";
+    Converged gpu = RenderUntilConverged(device(), s, p, W, H);
+    EXPECT_EQ(readback.last.unserved, 0u);
+    EXPECT_EQ(gpu.last.unserved, 0u);
+    EXPECT_GT(readback.pages.size(), 5u + 10u) << "the view must refine beyond the 5 pinned pages";
+    EXPECT_EQ(gpu.pages, readback.pages) << "resident pages differ";
+    size_t levels[16] = {};
+    for (uint32_t k : gpu.pages) ++levels[k >> 28];
+    std::printf("asm %s: %zu resident pages (readback %zu); by level:", mark, gpu.pages.size(), readback.pages.size());
+    for (int l = 0; l < 9; ++l) std::printf(" %zu", levels[l]);
+    int diff = DifferentPixels(gpu.image, readback.image);
+    std::printf("; %d pixels differ\n", diff);
+    EXPECT_EQ(diff, 0);
+    if (diff) {
+      WritePng(TestOutputDir() / (std::string("gpu-") + mark + ".png"), W, H, gpu.image.data());
+      WritePng(TestOutputDir() / (std::string("readback-") + mark + ".png"), W, H, readback.image.data());
+    }
+  }
+}
+
+// gpu_batch 3: at most three pages drawn per iteration, the rest asked for again by the next
+// iteration's analysis; with enough iterations the same pages end resident.
+TEST_P(AsmGpuAllocationTest, SmallBatchDefersPagesWithoutLosingThem) {
+  const uint32_t W = 160, H = 96;
+  scene::Scene s = ObliqueBox();
+  TechniqueParams p = kSmallPages;
+  p["allocation"] = "gpu";
+  p["mark"] = "visible";
+  Converged wide = RenderUntilConverged(device(), s, p, W, H);
+  p["gpu_batch"] = "3";
+  p["iterations"] = "64";
+  auto r = MakeTechniqueRenderer(device(), "asm", s, W, H, p);
+  r->RenderFrame(s.camera, s.light);
+  tech::AsmCounters n = Source(*r).AsmFrameCounters();
+  EXPECT_LE(n.pagesRendered - 5, 3u * 64u);
+  EXPECT_EQ(n.unserved, 0u);
+  std::vector<uint32_t> pages = Source(*r).AsmResidentPages();
+  EXPECT_EQ(pages, wide.pages);
+  std::printf("asm gpu_batch 3: %u pages rendered in %u iterations, %zu resident (batch 64: %zu)\n", n.pagesRendered, n.iterations, pages.size(),
+              wide.pages.size());
+}
+
+// Pages stay resident across frames (the second frame of a view draws none); a new light
+// direction invalidates every page, and the shadow follows the new light.
+TEST_P(AsmGpuAllocationTest, PagesAreCachedUntilTheLightMoves) {
+  const uint32_t W = 128, H = 128;
+  scene::Scene s = FloatingBox(false);
+  TechniqueParams p = kSmallPages;
+  p["allocation"] = "gpu";
+  auto r = MakeTechniqueRenderer(device(), "asm", s, W, H, p);
+  r->RenderFrame(s.camera, s.light);
+  tech::AsmCounters first = Source(*r).AsmFrameCounters();
+  r->RenderFrame(s.camera, s.light);
+  tech::AsmCounters second = Source(*r).AsmFrameCounters();
+  EXPECT_GT(first.pagesRendered, 5u);
+  EXPECT_EQ(second.pagesRendered, 0u);
+  EXPECT_EQ(second.resident, first.resident);
+  s.light.direction = glm::normalize(glm::vec3(1.0f, -1.5f, 0.3f));
+  r->RenderFrame(s.camera, s.light);
+  tech::AsmCounters moved = Source(*r).AsmFrameCounters();
+  EXPECT_GT(moved.pagesRendered, 5u) << "the pinned pages and the new edge's pages are drawn again";
+  Comparison c = CompareWithAnalytic(r->ReadColor(), AnalyticFloor(s, W, H), W, H, 2);
+  EXPECT_GT(c.shadow, 200);
+  EXPECT_EQ(c.wrong, 0) << "the shadow must follow the moved light";
+  std::printf("asm gpu caching: %u pages, then %u, after the light moved %u (%d checked, %d wrong)\n", first.pagesRendered, second.pagesRendered,
+              moved.pagesRendered, c.checked, c.wrong);
+}
+
+SP_INSTANTIATE_BACKEND_TESTS(AsmGpuAllocationTest);
+
+}  // namespace
+}  // namespace sp::test
