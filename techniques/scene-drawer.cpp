@@ -114,8 +114,8 @@ uint64_t SceneDrawer::DrawDepth(DeviceContext& ctx, const glm::mat4& viewProj, c
   return triangles;
 }
 
-void SceneDrawer::DrawDepthIndirect(DeviceContext& ctx, const DepthShaders& shaders, Buffer* args, uint32_t firstArgsByte) {
-  SetFrame(ctx, glm::mat4(1.0f), nullptr);
+void SceneDrawer::DrawDepthIndirect(DeviceContext& ctx, const glm::mat4& viewProj, const DepthShaders& shaders, Buffer* args, uint32_t firstArgsByte) {
+  SetFrame(ctx, viewProj, nullptr);
   gpu_.BindGeometry(ctx);
   ctx.IASetInputLayout(depthLayout_.get());
   ctx.VSSetShader(shaders.vs ? shaders.vs : depthVs_.get());

@@ -106,6 +106,12 @@ RunResult RunOne(const RunSpec& spec, eval::ReferenceCache& reference, const Pro
     layers.push_back(double(tech.Stats().layersRendered));
     if (auto* refinement = dynamic_cast<const tech::AsmCounterSource*>(&tech)) r.asmRefinement.push_back(refinement->AsmFrameCounters());
   }
+  if (auto* refinement = dynamic_cast<const tech::AsmCounterSource*>(&tech))
+    for (uint32_t key : refinement->AsmResidentPages()) {
+      uint32_t level = key >> 28;
+      if (r.asmPagesByLevel.size() <= level) r.asmPagesByLevel.resize(level + 1, 0);
+      ++r.asmPagesByLevel[level];
+    }
   std::vector<tech::FrameTimes> times = timer.Collect(ctx, true);
   renderer.SetGpuTimer(nullptr);
   r.disjointFrames = timer.DisjointFrames();

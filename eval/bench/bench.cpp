@@ -193,7 +193,7 @@ nlohmann::json RunToJson(const RunResult& r, const std::map<std::string, std::st
       if (converged < 0 && c.pagesRendered == 0) converged = int(i);
       unserved += c.unserved;
     }
-    m["asm_refinement"] = {{"frames", frames}, {"converged_frame", converged}, {"unserved_total", unserved}};
+    m["asm_refinement"] = {{"frames", frames}, {"converged_frame", converged}, {"unserved_total", unserved}, {"pages_by_level", r.asmPagesByLevel}};
   }
   if (!r.hpsmDecisions.empty()) {
     json h = json::object();

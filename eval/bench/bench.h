@@ -76,6 +76,8 @@ struct RunResult {
   // other techniques). The JSON adds the frame the refinement first rendered no page in
   // ("converged_frame", -1 if none) and the unserved requests over all frames.
   std::vector<tech::AsmCounters> asmRefinement;
+  // ... and the pages resident after the last timed frame, per page-table level (0 the coarsest).
+  std::vector<uint32_t> asmPagesByLevel;
 
   std::vector<double> flickerSeries;        // frames 1..N-1
   std::vector<double> misclassifiedSeries, gpuTotalSeries, cpuSeries;  // frames 0..N-1

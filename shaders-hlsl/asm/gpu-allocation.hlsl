@@ -8,7 +8,11 @@
 //                  counted per age bin: bin 0 free, then oldest first (LRU at frame granularity);
 //  CSAssign        one group: a prefix sum over the bins gives each bin's first rank; the first
 //                  `served` missing pages (at most batchPages, at most the slots available) get a
-//                  slot; writes the indirect arguments of the later passes and the draws;
+//                  slot; writes the indirect arguments of the later passes and the draws, and
+//                  whether the next iteration runs at all: only if this one placed a page (new
+//                  pages can reveal finer edges) or deferred some; otherwise the next
+//                  iteration's view is drawn with no instances and its analysis with no groups,
+//                  the GPU's own early exit (the readback mode's CPU stops the loop instead);
 //  CSScatter       each available slot takes its rank's missing page: the page it held loses its
 //                  table entry, the new page gains one (both as change records), and the page is
 //                  listed for rendering;
@@ -33,6 +37,9 @@ cbuffer AsmGpu : register(b0) {
   uint gpuMaxLevel;
   uint requestCapacity;
   uint pad0;
+  uint2 analyzeGroups;  // CSAnalyze's dispatch (8x8 threads per group over the view)
+  uint viewArgs;        // word offset of the view pass's draw arguments in Args
+  uint pad2;
 };
 
 // State words.
@@ -45,14 +52,18 @@ static const uint kCountRequests = 5;  // frame counters: requests, pages render
 static const uint kCountRendered = 6;  // unserved (cleared by the CPU each frame) ...
 static const uint kCountEvicted = 7;
 static const uint kCountUnserved = 8;
-static const uint kResident = 9;       // ... and pages resident (kept across frames)
+static const uint kCountIterations = 9;  // iterations that ran (iteration 0 always does)
+static const uint kContinue = 10;        // 1: the current iteration runs (set by the previous)
+static const uint kResident = 11;        // pages resident (kept across frames)
 
 // Args words (dispatch and draw arguments).
 static const uint kTouchArgs = 0;
 static const uint kDeferArgs = 3;
 static const uint kPublishArgs = 6;
-static const uint kCopyArgs = 9;    // DrawInstanced: 6 vertices, one instance per new page
-static const uint kDrawArgs = 13;   // DrawIndexedInstanced per scene draw item, 5 words each
+static const uint kCopyArgs = 9;     // DrawInstanced: 6 vertices, one instance per new page
+static const uint kAnalyzeArgs = 13; // the next iteration's CSAnalyze dispatch
+static const uint kDrawArgs = 16;    // DrawIndexedInstanced per scene draw item, 5 words each,
+                                     // then (at viewArgs) the same for the next view pass
 
 static const uint kEmpty = 0xffffffffu;      // a slot's key: no page
 static const uint kPinned = 0xffffffffu;     // a slot's last use: pinned, never evicted
@@ -83,6 +94,7 @@ uint2 KeyPage(uint k) { return uint2(k & 0x3fffu, (k >> 14) & 0x3fffu); }
   State.Store(kServed * 4, 0);
   uint old;
   State.InterlockedAdd(kCountRequests * 4, count, old);
+  State.InterlockedAdd(kCountIterations * 4, State.Load(kContinue * 4), old);
   Args.Store3(kTouchArgs * 4, uint3((count + 63) / 64, 1, 1));
 }
 
@@ -134,14 +146,19 @@ groupshared uint gScan[256];
   uint missing = State.Load(kMissing * 4);
   uint take = min(missing, available);
   uint served = min(take, batchPages);
+  uint next = take > 0 ? 1 : 0;
   for (uint d = t; d < drawCount; d += 256) {
     uint4 a = DrawTemplate.Load4(d * 20);
     Args.Store4((kDrawArgs + d * 5) * 4, uint4(a.x, served, a.z, a.w));
     Args.Store((kDrawArgs + d * 5 + 4) * 4, 0);
+    Args.Store4((viewArgs + d * 5) * 4, uint4(a.x, next, a.z, a.w));
+    Args.Store((viewArgs + d * 5 + 4) * 4, 0);
   }
   if (t != 0) return;
   State.Store(kServed * 4, served);
   State.Store(kAvailable * 4, available);
+  State.Store(kContinue * 4, next);
+  Args.Store3(kAnalyzeArgs * 4, next ? uint3(analyzeGroups, 1) : uint3(0, 1, 1));
   uint old;
   State.InterlockedAdd(kCountRendered * 4, served, old);
   State.InterlockedAdd(kCountUnserved * 4, missing - take, old);

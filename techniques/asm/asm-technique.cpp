@@ -187,7 +187,7 @@ class AsmTechnique final : public Technique, public AsmCounterSource {
       for (uint32_t l = 0; l < residentLevels_; ++l)
         for (uint32_t y = 0; y < (1u << l); ++y)
           for (uint32_t x = 0; x < (1u << l); ++x) Serve({l, x, y}, true, fresh);
-      RenderPages(ctx, drawer, fresh);
+      RenderPages(ctx, drawer, fresh, frame.timer);
       if (gpuAllocation_) {
         std::vector<std::pair<uint32_t, uint32_t>> pinned;
         for (const PageKey& k : fresh) pinned.push_back({(k.level << 28) | (k.y << 14) | k.x, *allocator_->SlotOf(k)});
@@ -211,7 +211,7 @@ class AsmTechnique final : public Technique, public AsmCounterSource {
       for (uint32_t r : requests) Serve({r >> 28, r & 0x3fffu, (r >> 14) & 0x3fffu}, false, fresh);
       counters_.requests += uint32_t(requests.size());
       if (fresh.empty()) break;
-      RenderPages(ctx, drawer, fresh);
+      RenderPages(ctx, drawer, fresh, frame.timer);
     }
     counters_.unserved = allocator_->unserved();
     counters_.resident = allocator_->resident();
@@ -241,6 +241,7 @@ class AsmTechnique final : public Technique, public AsmCounterSource {
     counters_.evicted = g.evicted;
     counters_.unserved = g.unserved;
     counters_.resident = g.resident;
+    counters_.iterations = g.iterations;
     trianglesSubmitted_ += uint64_t(g.rendered) * sceneTriangles_;
     gpuRead_ = true;
     return counters_;
@@ -289,8 +290,10 @@ class AsmTechnique final : public Technique, public AsmCounterSource {
   };
 
   // allocation=gpu: `iterations` analyses, each followed by the GPU's allocation and page
-  // drawing; the CPU cannot know when nothing is left to do, so it records every iteration (an
-  // iteration with nothing missing dispatches empty passes and draws no instances).
+  // drawing. The CPU cannot know when nothing is left to do, so it records every iteration; one
+  // after an iteration that placed and deferred no page draws no instances and dispatches no
+  // groups (the arguments come from the GPU), so only the first costs a full analysis when the
+  // view's pages are resident.
   void RefineOnGpu(DeviceContext& ctx, SceneDrawer& drawer, const FrameInputs& frame) {
     sceneTriangles_ = 0;
     for (const scene::DrawItem& d : drawer.gpu().draws()) sceneTriangles_ += d.indexCount / 3;
@@ -305,13 +308,14 @@ class AsmTechnique final : public Technique, public AsmCounterSource {
     t.poolDsv = pool_.dsv.get();
     t.pageRasterizer = pageRasterizer_.get();
     t.requestCapacity = uint32_t(requestBytes_ / 4);
+    t.analyzeGroups[0] = (viewWidth_ + 7) / 8;
+    t.analyzeGroups[1] = (viewHeight_ + 7) / 8;
     for (uint32_t it = 0; it < iterations_; ++it) {
       {
         GpuTimer::Scope timed(frame.timer, ctx, "analysis");
-        DrawAnalysis(ctx, drawer, frame);
+        DrawAnalysis(ctx, drawer, frame, it > 0);
       }
-      gpu_->Refine(ctx, drawer, t);
-      ++counters_.iterations;
+      gpu_->Refine(ctx, drawer, t, frame.timer);
     }
   }
 
@@ -365,8 +369,9 @@ class AsmTechnique final : public Technique, public AsmCounterSource {
     return crop * lightViewProj_;
   }
 
-  void RenderPages(DeviceContext& ctx, SceneDrawer& drawer, const std::vector<PageKey>& pages) {
+  void RenderPages(DeviceContext& ctx, SceneDrawer& drawer, const std::vector<PageKey>& pages, GpuTimer* timer) {
     if (pages.empty()) return;
+    GpuTimer::Scope timed(timer, ctx, "pages");
     ShaderResourceView* none[2] = {};
     ctx.PSSetShaderResources(0, 2, none);
     ctx.OMSetRenderTargets(0, nullptr, pool_.dsv.get());
@@ -436,8 +441,11 @@ class AsmTechnique final : public Technique, public AsmCounterSource {
   // One analysis: the camera's view with the current pages, the Sobel pass appending requests,
   // and the readback of the request stream (waits for the GPU: the paper's CpuReadback).
   std::vector<uint32_t> Analyze(DeviceContext& ctx, SceneDrawer& drawer, const FrameInputs& frame) {
-    GpuTimer::Scope timed(frame.timer, ctx, "analysis");
-    DrawAnalysis(ctx, drawer, frame);
+    {
+      GpuTimer::Scope timed(frame.timer, ctx, "analysis");
+      DrawAnalysis(ctx, drawer, frame);
+    }
+    GpuTimer::Scope timed(frame.timer, ctx, "readback");
     ctx.CopyStructureCount(countBuffer_.get(), 0, requestsUav_.get());
     ctx.CopyResource(countStaging_.get(), countBuffer_.get());
     uint32_t count = ReadWords(ctx, countStaging_.get(), 1)[0];
@@ -449,7 +457,9 @@ class AsmTechnique final : public Technique, public AsmCounterSource {
   }
 
   // The camera's view with the current pages, and the pass appending this frame's new requests.
-  void DrawAnalysis(DeviceContext& ctx, SceneDrawer& drawer, const FrameInputs& frame) {
+  // early: allocation=gpu's iterations after the first, drawn and dispatched with the arguments the
+  // previous iteration's allocation wrote (nothing when it placed and deferred no page).
+  void DrawAnalysis(DeviceContext& ctx, SceneDrawer& drawer, const FrameInputs& frame, bool early = false) {
     ShaderResourceView* none[2] = {};
     ctx.CSSetShaderResources(0, 2, none);
     RenderTargetView* rtv = viewRtv_.get();
@@ -462,7 +472,11 @@ class AsmTechnique final : public Technique, public AsmCounterSource {
     ctx.RSSetState(viewRasterizer_.get());
     ctx.OMSetDepthStencilState(nullptr, 0);
     BindLighting(ctx);
-    trianglesViewed_ = drawer.DrawDepth(ctx, frame.cameraProj * frame.cameraView, [](uint32_t) { return true; }, {viewVs_.get(), viewPs_.get()});
+    glm::mat4 camera = frame.cameraProj * frame.cameraView;
+    if (early)
+      drawer.DrawDepthIndirect(ctx, camera, {viewVs_.get(), viewPs_.get()}, gpu_->Args(), gpu_->ViewArgsByte());
+    else
+      trianglesViewed_ = drawer.DrawDepth(ctx, camera, [](uint32_t) { return true; }, {viewVs_.get(), viewPs_.get()});
     ctx.OMSetRenderTargets(0, nullptr, nullptr);
 
     AnalysisConstants ac{viewWidth_, viewHeight_, maxLevel_, edgeThreshold_, markVisible_ ? 1u : 0u, float(pageSize_), {0, 0}};
@@ -473,7 +487,10 @@ class AsmTechnique final : public Technique, public AsmCounterSource {
     UnorderedAccessView* uavs[2] = {requestedUav_.get(), requestsUav_.get()};
     const uint32_t counts[2] = {0xffffffffu, 0};
     ctx.CSSetUnorderedAccessViews(0, 2, uavs, counts);
-    ctx.Dispatch((viewWidth_ + 7) / 8, (viewHeight_ + 7) / 8, 1);
+    if (early)
+      ctx.DispatchIndirect(gpu_->Args(), gpu_->AnalyzeArgsByte());
+    else
+      ctx.Dispatch((viewWidth_ + 7) / 8, (viewHeight_ + 7) / 8, 1);
     UnorderedAccessView* noUavs[2] = {};
     ctx.CSSetUnorderedAccessViews(0, 2, noUavs, nullptr);
     ctx.CSSetShaderResources(0, 2, none);

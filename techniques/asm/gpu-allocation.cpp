@@ -9,8 +9,8 @@ namespace {
 
 // Word offsets in State and Args: must match shaders-hlsl/asm/gpu-allocation.hlsl.
 constexpr uint32_t kStateWords = 16;
-constexpr uint32_t kCountRequests = 5, kCountResident = 9;
-constexpr uint32_t kTouchArgs = 0, kDeferArgs = 3, kPublishArgs = 6, kCopyArgs = 9, kDrawArgs = 13;
+constexpr uint32_t kCountRequests = 5, kCountIterations = 9, kContinue = 10, kCountResident = 11;
+constexpr uint32_t kTouchArgs = 0, kDeferArgs = 3, kPublishArgs = 6, kCopyArgs = 9, kAnalyzeArgs = 13, kDrawArgs = 16;
 constexpr uint32_t kEmpty = 0xffffffffu, kPinned = 0xffffffffu;
 
 uint32_t Groups(uint32_t n, uint32_t size) { return (n + size - 1) / size; }
@@ -22,6 +22,7 @@ Ref<Buffer> RawBuffer(Device& device, uint32_t bytes, uint32_t bind, const char*
 // cbuffer AsmGpu.
 struct AllocationConstants {
   uint32_t frameNumber, slotCount, batchPages, drawCount, pad1, maxLevel, requestCapacity, pad0;
+  uint32_t analyzeGroups[2], viewArgs, pad2;
 };
 
 }  // namespace
@@ -105,13 +106,24 @@ void GpuAllocation::Reset(DeviceContext& ctx, const std::vector<std::pair<uint32
 void GpuAllocation::BeginFrame(DeviceContext& ctx) {
   ++frame_;
   if (frame_ == kPinned) frame_ = 1;  // after 2^32 frames; kPinned must never be a frame number
-  // The four frame counters (requests, rendered, evicted, unserved) restart; resident stays.
-  const uint32_t zero[4] = {};
-  BOX box{kCountRequests * 4, 0, 0, (kCountRequests + 4) * 4, 1, 1};
-  ctx.UpdateSubresource(state_.get(), 0, &box, zero, 0, 0);
+  // The frame counters (requests, rendered, evicted, unserved, iterations) restart and iteration
+  // 0 runs; resident stays.
+  const uint32_t words[6] = {0, 0, 0, 0, 0, 1};
+  BOX box{kCountRequests * 4, 0, 0, (kContinue + 1) * 4, 1, 1};
+  ctx.UpdateSubresource(state_.get(), 0, &box, words, 0, 0);
 }
 
-void GpuAllocation::Refine(DeviceContext& ctx, SceneDrawer& drawer, const GpuAllocationTargets& t) {
+void GpuAllocation::Refine(DeviceContext& ctx, SceneDrawer& drawer, const GpuAllocationTargets& t, GpuTimer* timer) {
+  {
+    GpuTimer::Scope timed(timer, ctx, "allocation");
+    Allocate(ctx, drawer, t);
+    Publish(ctx, t);
+  }
+  GpuTimer::Scope timed(timer, ctx, "pages");
+  RenderNewPages(ctx, drawer, t);
+}
+
+void GpuAllocation::Allocate(DeviceContext& ctx, SceneDrawer& drawer, const GpuAllocationTargets& t) {
   if (!drawTemplate_) {
     // The scene's draw items are fixed once the technique draws: their argument template is made
     // on the first refinement, and args_ holds the passes' arguments followed by one draw's per item.
@@ -126,10 +138,10 @@ void GpuAllocation::Refine(DeviceContext& ctx, SceneDrawer& drawer, const GpuAll
     drawTemplate_ = device_.CreateBuffer(d, &init);
     drawTemplate_->SetDebugName("asm gpu draw argument template");
     drawTemplateSrv_ = MakeRawSrv(device_, drawTemplate_.get());
-    args_ = RawBuffer(device_, (kDrawArgs + 5 * std::max(drawCount_, 1u)) * 4, BIND_UNORDERED_ACCESS, "asm gpu indirect arguments",
+    args_ = RawBuffer(device_, (kDrawArgs + 10 * std::max(drawCount_, 1u)) * 4, BIND_UNORDERED_ACCESS, "asm gpu indirect arguments",
                       RESOURCE_MISC_DRAWINDIRECT_ARGS);
     argsUav_ = MakeRawUav(device_, args_.get());
-    bytes_ += uint64_t(words.size()) * 4 + uint64_t(kDrawArgs + 5 * drawCount_) * 4;
+    bytes_ += uint64_t(words.size()) * 4 + uint64_t(kDrawArgs + 10 * drawCount_) * 4;
   }
   if (missingCapacity_ < t.requestCapacity) {
     missing_ = RawBuffer(device_, t.requestCapacity * 4, BIND_UNORDERED_ACCESS, "asm gpu missing pages");
@@ -137,7 +149,8 @@ void GpuAllocation::Refine(DeviceContext& ctx, SceneDrawer& drawer, const GpuAll
     bytes_ += uint64_t(t.requestCapacity - missingCapacity_) * 4;
     missingCapacity_ = t.requestCapacity;
   }
-  AllocationConstants c{frame_, slots_, batch_, drawCount_, 0, maxLevel_, t.requestCapacity, 0};
+  AllocationConstants c{frame_, slots_, batch_, drawCount_, 0, maxLevel_, t.requestCapacity, 0, {t.analyzeGroups[0], t.analyzeGroups[1]},
+                        ViewArgsByte() / 4, 0};
   ctx.UpdateSubresource(constants_.get(), 0, nullptr, &c, 0, 0);
   ctx.CopyStructureCount(state_.get(), 0, t.requestsUav);
 
@@ -162,8 +175,6 @@ void GpuAllocation::Refine(DeviceContext& ctx, SceneDrawer& drawer, const GpuAll
   UnorderedAccessView* none[8] = {};
   ctx.CSSetUnorderedAccessViews(0, 8, none, nullptr);
   ctx.CSSetShaderResources(0, {nullptr, nullptr, nullptr});
-  Publish(ctx, t);
-  RenderNewPages(ctx, drawer, t);
 }
 
 void GpuAllocation::Publish(DeviceContext& ctx, const GpuAllocationTargets& t) {
@@ -203,7 +214,7 @@ void GpuAllocation::RenderNewPages(DeviceContext& ctx, SceneDrawer& drawer, cons
   ctx.OMSetDepthStencilState(nullptr, 0);
   ctx.VSSetConstantBuffers(2, {t.shadowConstants});
   ctx.VSSetShaderResources(2, {newPagesSrv_.get()});
-  drawer.DrawDepthIndirect(ctx, {pageVs_.get(), nullptr}, args_.get(), kDrawArgs * 4);
+  drawer.DrawDepthIndirect(ctx, glm::mat4(1.0f), {pageVs_.get(), nullptr}, args_.get(), kDrawArgs * 4);
 
   // Copy each slice to its pool slot.
   ctx.OMSetRenderTargets(0, nullptr, t.poolDsv);
@@ -224,6 +235,9 @@ void GpuAllocation::RenderNewPages(DeviceContext& ctx, SceneDrawer& drawer, cons
   ctx.OMSetDepthStencilState(nullptr, 0);
 }
 
+uint32_t GpuAllocation::ViewArgsByte() const { return (kDrawArgs + 5 * drawCount_) * 4; }
+uint32_t GpuAllocation::AnalyzeArgsByte() const { return kAnalyzeArgs * 4; }
+
 GpuAllocation::Counters GpuAllocation::Read(DeviceContext& ctx) const {
   ctx.CopyResource(staging_.get(), state_.get());
   MAPPED_SUBRESOURCE m;
@@ -231,7 +245,7 @@ GpuAllocation::Counters GpuAllocation::Read(DeviceContext& ctx) const {
   uint32_t w[kStateWords];
   std::memcpy(w, m.pData, sizeof(w));
   ctx.Unmap(staging_.get(), 0);
-  return {w[kCountRequests], w[kCountRequests + 1], w[kCountRequests + 2], w[kCountRequests + 3], w[kCountResident]};
+  return {w[kCountRequests], w[kCountRequests + 1], w[kCountRequests + 2], w[kCountRequests + 3], w[kCountResident], w[kCountIterations]};
 }
 
 }  // namespace sp::tech::asmap

@@ -25,6 +25,7 @@ struct GpuAllocationTargets {
   DepthStencilView* poolDsv = nullptr;
   RasterizerState* pageRasterizer = nullptr;   // depth bias, no depth clip, scissor on
   uint32_t requestCapacity = 0;                // elements of the request stream
+  uint32_t analyzeGroups[2] = {0, 0};          // the analysis' dispatch over the view
 };
 
 class GpuAllocation {
@@ -40,17 +41,25 @@ class GpuAllocation {
   // A new frame: pages used from now on are this frame's (not evictable until the next); the
   // frame counters restart.
   void BeginFrame(DeviceContext& ctx);
-  // One iteration after an analysis: allocate, publish the table changes, render the new pages.
-  void Refine(DeviceContext& ctx, SceneDrawer& drawer, const GpuAllocationTargets& t);
+  // One iteration after an analysis: allocate, publish the table changes ("allocation" pass of
+  // the timer), render the new pages ("pages").
+  void Refine(DeviceContext& ctx, SceneDrawer& drawer, const GpuAllocationTargets& t, GpuTimer* timer);
 
   struct Counters {
-    uint32_t requests = 0, rendered = 0, evicted = 0, unserved = 0, resident = 0;
+    uint32_t requests = 0, rendered = 0, evicted = 0, unserved = 0, resident = 0, iterations = 0;
   };
   // The frame's counters so far. Reads the GPU (waits for it): for tests and the lab only.
   Counters Read(DeviceContext& ctx) const;
   uint64_t Bytes() const { return bytes_; }
+  // After the first Refine: the arguments the next iteration's analysis runs with (the GPU's early
+  // exit): the view pass's draws (SceneDrawer::DrawDepthIndirect, one instance or none) and the
+  // analysis dispatch (all its groups or none), in Args().
+  Buffer* Args() const { return args_.get(); }
+  uint32_t ViewArgsByte() const;
+  uint32_t AnalyzeArgsByte() const;
 
  private:
+  void Allocate(DeviceContext& ctx, SceneDrawer& drawer, const GpuAllocationTargets& t);
   void Publish(DeviceContext& ctx, const GpuAllocationTargets& t);
   void RenderNewPages(DeviceContext& ctx, SceneDrawer& drawer, const GpuAllocationTargets& t);
 

@@ -129,7 +129,7 @@ class SceneDrawer {
   // allocation=gpu draws each new page as one instance). IndirectArgsOfDraws gives the items'
   // arguments with InstanceCount 0, in that order. `shaders` as DrawDepth's; the triangle count
   // is the GPU's to know, so none is returned.
-  void DrawDepthIndirect(DeviceContext& ctx, const DepthShaders& shaders, Buffer* args, uint32_t firstArgsByte);
+  void DrawDepthIndirect(DeviceContext& ctx, const glm::mat4& viewProj, const DepthShaders& shaders, Buffer* args, uint32_t firstArgsByte);
   std::vector<uint32_t> IndirectArgsOfDraws() const;
   // One pass into `layers` layers of a layered depth target (a DSV_DIMENSION_TEXTURE2DARRAY
   // view of that many slices, bound by the caller with viewport and rasterizer state): layer l is
