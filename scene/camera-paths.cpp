@@ -54,6 +54,15 @@ Camera CameraPath::at(double t) const {
   return c;
 }
 
+std::optional<glm::vec3> CameraPath::lightAt(double t) const {
+  if (keys.empty() || !keys.front().lightDirection) return std::nullopt;
+  size_t i = 1;
+  while (i + 1 < keys.size() && double(keys[i].time) < t) ++i;
+  if (keys.size() == 1) return keys.front().lightDirection;
+  float f = std::clamp(float((t - keys[i - 1].time) / std::max(1e-6f, keys[i].time - keys[i - 1].time)), 0.0f, 1.0f);
+  return glm::normalize(glm::mix(*keys[i - 1].lightDirection, *keys[i].lightDirection, f));
+}
+
 const CameraPath& Scene::cameraPath(const std::string& pathName) const {
   for (const CameraPath& p : cameraPaths)
     if (p.name == pathName) return p;

@@ -87,6 +87,13 @@ RunResult RunOne(const RunSpec& spec, eval::ReferenceCache& reference, const Pro
     if (!spec.path) return scene.camera;
     return spec.path->at(spec.frames > 1 ? double(i) / double(spec.frames - 1) : 0.0);
   };
+  // A path recorded with the sun's direction (a sun turning) moves the scene's light with it.
+  auto lightAt = [&](uint32_t i) {
+    scene::DirectionalLight l = scene.light;
+    if (spec.path)
+      if (std::optional<glm::vec3> d = spec.path->lightAt(spec.frames > 1 ? double(i) / double(spec.frames - 1) : 0.0)) l.direction = *d;
+    return l;
+  };
   std::string what = Describe(spec);
 
   // --- 1. Timing: the normal lit pass, nothing read back.
@@ -99,7 +106,7 @@ RunResult RunOne(const RunSpec& spec, eval::ReferenceCache& reference, const Pro
     // (and, on a software device, no competition with) the previous frame's GPU work.
     ctx.WaitIdle();
     auto t0 = std::chrono::steady_clock::now();
-    renderer.RenderFrame(cameraAt(i), scene.light);
+    renderer.RenderFrame(cameraAt(i), lightAt(i));
     ctx.Flush();  // what Present would do: submission is part of a frame's CPU cost
     r.cpuSeries.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
     triangles.push_back(double(tech.Stats().trianglesSubmitted));
@@ -170,10 +177,11 @@ RunResult RunOne(const RunSpec& spec, eval::ReferenceCache& reference, const Pro
     scene::Camera cam = cameraAt(i);
     tech::LabBuffers before;
     if (i > 0) {
-      renderer.RenderLitPass(cam, scene.light, tech::LitPass::Lab);
+      renderer.RenderLitPass(cam, lightAt(i), tech::LitPass::Lab);
       before = renderer.ReadLab();
     }
-    renderer.RenderFrame(cam, scene.light, tech::LitPass::Lab);
+    renderer.RenderFrame(cam, lightAt(i), tech::LitPass::Lab);
+    if (r.judgedLocalLight < 0) light = eval::ReferenceLight::FromScene(lightAt(i));
     tech::LabBuffers now = renderer.ReadLab();
     auto t0 = std::chrono::steady_clock::now();
     bool cached = false;

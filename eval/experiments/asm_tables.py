@@ -86,7 +86,7 @@ def resolution(out):
     rs = runs(out, "resolution")
     if not rs:
         return
-    base = {r["backend"]: ms(r, "lit") for r in rs if r["technique"] == "basic"}
+    base = {r["backend"]: ms(r, "lit") for r in runs(out, "resolution-basic")}
     print(f"\n**Effective resolution and the paper's figures, close-up A** ({rs[0]['size'][0]}x{rs[0]['size'][1]}, "
           f"{rs[0]['frames']} frames; lit pass against basic 2048^2's: the paper's 73-91 %)\n")
     header(["mode", "effective", "finest level (texels)", "resident pages", "memory MiB", "lit vs basic vk / gl",
@@ -105,7 +105,7 @@ def resolution(out):
 
 def stability(out):
     for name, what in (("cut", "camera cut A -> B halfway"), ("pan", "fast pan, 90 degrees over the path"),
-                       ("sun", "sun turning 20 degrees over the path"), ("small-pool", "fast pan with a pool of 10^2 or 16^2 pages")):
+                       ("sun", "sun turning 20 degrees over the path"), ("small-pool", "fast pan with a pool of 6^2 or 16^2 pages, 3 resident levels")):
         rs = runs(out, name)
         if not rs:
             continue

@@ -338,12 +338,7 @@ class Viewer {
   void Replay(double seconds) {
     double t = opt_.frames > 1 ? seconds / ((opt_.frames - 1) * kFrameSeconds) : std::fmod(seconds / kReplaySeconds, 1.0);
     camera_ = std::make_unique<viewer::FlyCamera>(replay_->at(t));
-    const std::vector<sp::scene::CameraKey>& k = replay_->keys;
-    if (!k.front().lightDirection) return;
-    size_t i = 1;
-    while (i + 1 < k.size() && k[i].time < t) ++i;
-    float f = std::clamp(float((t - k[i - 1].time) / std::max(1e-6f, k[i].time - k[i - 1].time)), 0.0f, 1.0f);
-    light_.direction = glm::normalize(glm::mix(*k[i - 1].lightDirection, *k[i].lightDirection, f));
+    if (std::optional<glm::vec3> sun = replay_->lightAt(t)) light_.direction = *sun;
   }
 
   void DrawUi(sp::DeviceContext& ctx) {

@@ -31,14 +31,10 @@ ViewOut VSView(float3 pos : POSITION) {
 
 float4 PSView(ViewOut i) : SV_Target {
   float3 c = AsmShadowCoord(i.worldPos);
-  // Map texels per pixel at level 0 along the longer footprint axis, from the screen derivatives
-  // of uv; level L has 2^L times as many: the level needed is ceil(log2(texels at level 0)).
-  float2 dx = ddx(c.xy), dy = ddy(c.xy);
-  float footprint = max(length(dx), length(dy)) * asmPageSize;  // level-0 texels per pixel
-  float need = footprint > 0.0 ? ceil(log2(1.0 / footprint)) : asmMaxLevel;
-  float level = clamp(need, 0.0, asmMaxLevel);
+  uint level = AsmNeededLevel(c.xy);
   if (AsmOutsideMap(c)) return float4(-1, -1, 1, -1);
-  return float4(c.xy, AsmVisibility(c), level);
+  // The shadow term as the lit pass computes it (ShadowVisibility's start level).
+  return float4(c.xy, AsmVisibility(c, max(level, uint(asmFinestPinned))), float(level));
 }
 
 cbuffer AsmAnalysis : register(b0) {

@@ -13,8 +13,16 @@
 //                  pages can reveal finer edges) or deferred some; otherwise the next
 //                  iteration's view is drawn with no instances and its analysis with no groups,
 //                  the GPU's own early exit (the readback mode's CPU stops the loop instead);
-//  CSScatter       each available slot takes its rank's missing page: the page it held loses its
-//                  table entry, the new page gains one (both as change records), and the page is
+//  CSOrder         one group: puts the missing list in key order (coarse levels first) and, for
+//                  pools of at most 2048 slots, the available slots in a total order (bin, the
+//                  page they hold, slot index), so that which pages are served and which are
+//                  evicted does not depend on the order of the atomics, which differs between
+//                  drivers (measured: lavapipe and llvmpipe evicted different pages under a full
+//                  pool before this pass); longer lists keep the atomics' order for what lies
+//                  beyond 2048;
+//  CSScatter       each available slot takes its rank's missing page (ranks from CSOrder, or
+//                  from the bins' cursors for larger pools): the page it held loses its table
+//                  entry, the new page gains one (both as change records), and the page is
 //                  listed for rendering;
 //  CSDefer         missing pages left over because of batchPages (not for want of slots) lose
 //                  their request bit, so the next iteration's analysis asks for them again;
@@ -25,6 +33,7 @@
 //! cs_5_0 CSTouch
 //! cs_5_0 CSAgeHistogram
 //! cs_5_0 CSAssign
+//! cs_5_0 CSOrder
 //! cs_5_0 CSScatter
 //! cs_5_0 CSDefer
 
@@ -33,7 +42,7 @@ cbuffer AsmGpu : register(b0) {
   uint slotCount;     // pool slots
   uint batchPages;    // pages rendered per iteration at most (the scratch array's slices)
   uint drawCount;     // scene draw items (per-draw indirect arguments)
-  uint pad1;
+  uint orderedSlots;  // 1: slotCount <= kOrderMax, CSOrder ranks the slots
   uint gpuMaxLevel;
   uint requestCapacity;
   uint pad0;
@@ -72,7 +81,8 @@ static const uint kNotResident = 0xffffffffu;
 RWByteAddressBuffer State : register(u0);
 RWByteAddressBuffer Args : register(u1);
 RWByteAddressBuffer Slots : register(u2);    // per slot: key, last frame used
-RWByteAddressBuffer Bins : register(u3);     // 256 counts (cursors after CSAssign), 256 first ranks
+RWByteAddressBuffer Bins : register(u3);     // 256 counts (cursors after CSAssign), 256 first ranks,
+                                             // then kOrderMax slots in rank order (CSOrder)
 RWByteAddressBuffer Missing : register(u4);  // request keys of pages not resident
 RWByteAddressBuffer Changes : register(u5);  // (key, table value) records
 RWByteAddressBuffer NewPages : register(u6); // (key, slot) per page to render
@@ -167,14 +177,79 @@ groupshared uint gScan[256];
   Args.Store4(kCopyArgs * 4, uint4(6, served, 0, 0));
 }
 
-[numthreads(64, 1, 1)] void CSScatter(uint s : SV_DispatchThreadID) {
-  if (s >= slotCount) return;
-  int bin = SlotBin(s);
-  if (bin < 0) return;
-  uint rank;
-  Bins.InterlockedAdd(uint(bin) * 4, 1, rank);
-  rank += Bins.Load((256 + uint(bin)) * 4);
-  if (rank >= State.Load(kServed * 4)) return;
+static const uint kOrderMax = 2048;
+groupshared uint2 gKey[kOrderMax];
+groupshared uint gItem[kOrderMax];
+
+bool Before(uint a, uint b) {
+  return gKey[a].x != gKey[b].x ? gKey[a].x < gKey[b].x : gKey[a].y != gKey[b].y ? gKey[a].y < gKey[b].y : gItem[a] < gItem[b];
+}
+
+// Bitonic sort of gKey/gItem (kOrderMax entries, two per thread), ascending.
+void SortShared(uint t) {
+  for (uint k = 2; k <= kOrderMax; k <<= 1)
+    for (uint j = k >> 1; j > 0; j >>= 1) {
+      [unroll] for (uint h = 0; h < 2; ++h) {
+        uint i = t + h * (kOrderMax / 2), l = i ^ j;
+        if (l > i && (((i & k) == 0) == Before(l, i))) {
+          uint2 kk = gKey[i];
+          gKey[i] = gKey[l];
+          gKey[l] = kk;
+          uint it = gItem[i];
+          gItem[i] = gItem[l];
+          gItem[l] = it;
+        }
+      }
+      GroupMemoryBarrierWithGroupSync();
+    }
+}
+
+[numthreads(1024, 1, 1)] void CSOrder(uint t : SV_GroupIndex) {
+  uint missing = min(State.Load(kMissing * 4), kOrderMax);
+  [unroll] for (uint h = 0; h < 2; ++h) {
+    uint i = t + h * (kOrderMax / 2);
+    gKey[i] = i < missing ? uint2(Missing.Load(i * 4), 0) : uint2(kEmpty, kEmpty);
+    gItem[i] = i;
+  }
+  GroupMemoryBarrierWithGroupSync();
+  SortShared(t);
+  [unroll] for (uint h2 = 0; h2 < 2; ++h2) {
+    uint i = t + h2 * (kOrderMax / 2);
+    if (i < missing) Missing.Store(i * 4, gKey[i].x);
+  }
+  GroupMemoryBarrierWithGroupSync();
+  if (orderedSlots == 0) return;
+  [unroll] for (uint h3 = 0; h3 < 2; ++h3) {
+    uint i = t + h3 * (kOrderMax / 2);
+    int bin = i < slotCount ? SlotBin(i) : -1;
+    gKey[i] = bin >= 0 ? uint2(uint(bin), Slots.Load(i * 8)) : uint2(kEmpty, kEmpty);
+    gItem[i] = i;
+  }
+  GroupMemoryBarrierWithGroupSync();
+  SortShared(t);
+  [unroll] for (uint h4 = 0; h4 < 2; ++h4) {
+    uint i = t + h4 * (kOrderMax / 2);
+    Bins.Store((512 + i) * 4, gItem[i]);
+  }
+}
+
+// orderedSlots: thread r takes the slot CSOrder ranked r; otherwise thread s is slot s and takes
+// the next rank of its bin.
+[numthreads(64, 1, 1)] void CSScatter(uint id : SV_DispatchThreadID) {
+  uint s, rank;
+  if (orderedSlots != 0) {
+    rank = id;
+    if (rank >= State.Load(kServed * 4)) return;
+    s = Bins.Load((512 + rank) * 4);
+  } else {
+    s = id;
+    if (s >= slotCount) return;
+    int bin = SlotBin(s);
+    if (bin < 0) return;
+    Bins.InterlockedAdd(uint(bin) * 4, 1, rank);
+    rank += Bins.Load((256 + uint(bin)) * 4);
+    if (rank >= State.Load(kServed * 4)) return;
+  }
   uint key = Missing.Load(rank * 4);
   uint old = Slots.Load(s * 8), at, unused;
   if (old != kEmpty) {

@@ -17,6 +17,8 @@ cbuffer AsmShadow : register(b2) {  // as asm/shadow.hlsli
   float asmMaxLevel;
   float asmPoolPages;
   float asmPoolSize;
+  float asmFinestPinned;
+  float3 asmPad;
 };
 
 ByteAddressBuffer NewPages : register(t2);

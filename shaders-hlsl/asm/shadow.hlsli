@@ -1,7 +1,10 @@
 // Lighting side of adaptive shadow maps (techniques/asm): a light-space coordinate is looked up
 // by walking the mip hierarchy of page tables (AsmPageTable, mip m = level maxLevel - m, one
 // texel per virtual page: the physical page index in the pool, or kAsmNotResident) from the
-// finest level down to the first resident page; the shadow term is a 2x2 bilinear comparison
+// level the pixel's footprint needs (the level the analysis requests for it, from the screen
+// derivatives of the map coordinates) down to the first resident page. Starting at the finest
+// level instead cost up to maxLevel + 1 dependent loads per texel wherever the view needs a
+// coarse level: the lit pass at 131072 effective texels cost 3-4x basic's. The shadow term is a 2x2 bilinear comparison
 // filter (the hardware filter's weights, LESS_EQUAL) at that page's resolution, done by hand:
 // each of the four texels is looked up through the page tables itself, so a footprint that
 // crosses a page edge reads the neighbouring virtual page (wherever the pool holds it, at its
@@ -17,6 +20,8 @@ cbuffer AsmShadow : register(b2) {
   float asmMaxLevel;          // finest level (2^maxLevel pages per side)
   float asmPoolPages;         // pages per pool side
   float asmPoolSize;          // texels per pool side
+  float asmFinestPinned;      // resident_levels - 1: always resident, so a walk never starts coarser
+  float3 asmPad;
 };
 
 Texture2D<float> AsmPool : register(t0);
@@ -36,17 +41,30 @@ bool AsmOutsideMap(float3 c) { return any(c.xy < 0.0) || any(c.xy > 1.0) || c.z 
 struct AsmPage {
   uint level;
   uint physical;   // pool page index
+  uint2 page;      // virtual page at that level
   float2 inPage;   // texel position inside the page, [0, pageSize]
 };
 
-// The finest resident page covering uv. Level 0 is always resident, so the walk ends there.
-AsmPage AsmFindPage(float2 uv) {
+// The level a pixel needs: one map texel per pixel at most along its footprint's longer axis
+// (level L has 2^L times level 0's texels). The analysis requests pages at this level. Must be
+// called in uniform control flow (derivatives).
+uint AsmNeededLevel(float2 uv) {
+  float2 dx = ddx(uv), dy = ddy(uv);
+  float footprint = max(length(dx), length(dy)) * asmPageSize;  // level-0 texels per pixel
+  float need = footprint > 0.0 ? ceil(log2(1.0 / footprint)) : asmMaxLevel;
+  return uint(clamp(need, 0.0, asmMaxLevel));
+}
+
+// The finest resident page covering uv at level `start` or coarser. Level 0 is always resident,
+// so the walk ends there.
+AsmPage AsmFindPage(float2 uv, uint start) {
   AsmPage r;
   r.level = 0;
   r.physical = 0;
+  r.page = uint2(0, 0);
   r.inPage = float2(0, 0);
   uint maxLevel = uint(asmMaxLevel);
-  [loop] for (int l = int(maxLevel); l >= 0; --l) {
+  [loop] for (int l = int(min(start, maxLevel)); l >= 0; --l) {
     uint n = 1u << uint(l);
     float2 v = saturate(uv) * float(n);
     uint2 p = min(uint2(v), uint2(n - 1, n - 1));
@@ -54,6 +72,7 @@ AsmPage AsmFindPage(float2 uv) {
     if (e != kAsmNotResident) {
       r.level = uint(l);
       r.physical = e;
+      r.page = p;
       r.inPage = (v - float2(p)) * asmPageSize;
       break;
     }
@@ -69,41 +88,56 @@ int2 AsmPoolTexel(AsmPage pg) {
 }
 
 // 1 where the receiver depth z is at or in front of the depth stored for the virtual texel
-// whose centre is uv (LESS_EQUAL, as MakeShadowComparisonSampler).
-float AsmTexelLit(float2 uv, float z) {
+// whose centre is uv (LESS_EQUAL, as MakeShadowComparisonSampler). `home` is the page found for
+// the pixel: a texel inside it needs no walk when no finer page can exist (home is at `start`).
+float AsmTexelLit(float2 uv, float z, AsmPage home, uint start) {
   if (any(uv < 0.0) || any(uv > 1.0)) return 1.0;  // outside the map: lit, as the BORDER sampler
-  return z <= AsmPool.Load(int3(AsmPoolTexel(AsmFindPage(uv)), 0)) ? 1.0 : 0.0;
+  AsmPage pg = home;
+  float2 v = uv * float(1u << home.level);
+  if (home.level == start && all(uint2(v) == home.page))
+    pg.inPage = (v - float2(home.page)) * asmPageSize;
+  else
+    pg = AsmFindPage(uv, start);
+  return z <= AsmPool.Load(int3(AsmPoolTexel(pg), 0)) ? 1.0 : 0.0;
 }
 
-// The 2x2 bilinear comparison filter at the resolution of the finest resident page at c.xy.
-float AsmVisibility(float3 c) {
-  AsmPage pg = AsmFindPage(c.xy);
+// The 2x2 bilinear comparison filter at the resolution of the finest resident page at c.xy from
+// level `start` down.
+float AsmVisibility(float3 c, uint start) {
+  AsmPage pg = AsmFindPage(c.xy, start);
   float res = asmPageSize * float(1u << pg.level);  // texels per side at that level
   float2 t = c.xy * res - 0.5;
   float2 f = frac(t);
   float2 t0 = (floor(t) + 0.5) / res;
   float d = 1.0 / res;
-  float a = lerp(AsmTexelLit(t0, c.z), AsmTexelLit(t0 + float2(d, 0), c.z), f.x);
-  float b = lerp(AsmTexelLit(t0 + float2(0, d), c.z), AsmTexelLit(t0 + float2(d, d), c.z), f.x);
+  float a = lerp(AsmTexelLit(t0, c.z, pg, start), AsmTexelLit(t0 + float2(d, 0), c.z, pg, start), f.x);
+  float b = lerp(AsmTexelLit(t0 + float2(0, d), c.z, pg, start), AsmTexelLit(t0 + float2(d, d), c.z, pg, start), f.x);
   return lerp(a, b, f.y);
 }
 
+// Where the pixel's walk starts: its needed level, or the finest pinned level where that is finer
+// (it is always resident: a coarser start would only lose resolution). Kept for the lab's
+// ShadowTexel and ShadowLocate, which the lit pass calls after ShadowVisibility, some in
+// non-uniform control flow (no derivatives there).
+static uint gAsmStartLevel = 0;
+
 float ShadowVisibility(float3 worldPos, float3 worldNormal, float4 svPosition) {
   float3 c = AsmShadowCoord(worldPos);
+  gAsmStartLevel = max(AsmNeededLevel(c.xy), uint(asmFinestPinned));
   if (AsmOutsideMap(c)) return 1.0;
-  return AsmVisibility(c);
+  return AsmVisibility(c, gAsmStartLevel);
 }
 
 // The lab's view: one layer, the pool. ShadowTexel gives the texel at the resolution of the
 // level the walk finds (what a pool page holds), so texels per pixel are the pool's.
 float2 ShadowTexel(float3 worldPos, float layer) {
   float2 uv = AsmShadowCoord(worldPos).xy;
-  AsmPage pg = AsmFindPage(uv);
+  AsmPage pg = AsmFindPage(uv, gAsmStartLevel);
   return uv * asmPageSize * float(1u << pg.level);
 }
 
 ShadowLookup ShadowLocate(float3 worldPos, float3 worldNormal) {
   float3 c = AsmShadowCoord(worldPos);
   if (AsmOutsideMap(c)) return MakeShadowLookup(kShadowNoLayer, float2(0, 0));
-  return MakeShadowLookup(0.0, float2(AsmPoolTexel(AsmFindPage(c.xy))) + 0.5);
+  return MakeShadowLookup(0.0, float2(AsmPoolTexel(AsmFindPage(c.xy, gAsmStartLevel))) + 0.5);
 }

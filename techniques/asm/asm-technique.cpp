@@ -163,7 +163,7 @@ class AsmTechnique final : public Technique, public AsmCounterSource {
   void RenderShadows(DeviceContext& ctx, SceneDrawer& drawer, const FrameInputs& frame) override {
     GpuTimer::Scope timed(frame.timer, ctx, "shadow");
     lightViewProj_ = FitOrthoToBounds(frame.scene->bounds, frame.light.direction).viewProj;  // level 0's page
-    Constants c{lightViewProj_, float(pageSize_), float(maxLevel_), float(poolPages_), float(poolPages_ * pageSize_)};
+    Constants c{lightViewProj_, float(pageSize_), float(maxLevel_), float(poolPages_), float(poolPages_ * pageSize_), float(residentLevels_ - 1), {}};
     ctx.UpdateSubresource(constants_.get(), 0, nullptr, &c, 0, 0);
     EnsureViewTargets(frame.width, frame.height);
     counters_ = {};
@@ -206,6 +206,9 @@ class AsmTechnique final : public Technique, public AsmCounterSource {
     std::vector<PageKey> fresh;
     for (uint32_t it = 0; it < iterations_; ++it) {
       std::vector<uint32_t> requests = Analyze(ctx, drawer, frame);
+      // The stream's order is the order of the GPU's appends, which differs between drivers; in
+      // key order (coarse levels first) a full pool serves and evicts the same pages everywhere.
+      std::sort(requests.begin(), requests.end());
       ++counters_.iterations;
       fresh.clear();
       for (uint32_t r : requests) Serve({r >> 28, r & 0x3fffu, (r >> 14) & 0x3fffu}, false, fresh);
@@ -278,8 +281,9 @@ class AsmTechnique final : public Technique, public AsmCounterSource {
   struct Constants {
     glm::mat4 lightViewProj;
     float pageSize, maxLevel, poolPages, poolSize;
+    float finestPinned, pad[3];
   };
-  static_assert(sizeof(Constants) == 80);
+  static_assert(sizeof(Constants) == 96);
   // cbuffer AsmAnalysis in shaders-hlsl/asm/analysis.hlsl.
   struct AnalysisConstants {
     uint32_t w, h, maxLevel;

@@ -12,6 +12,7 @@ constexpr uint32_t kStateWords = 16;
 constexpr uint32_t kCountRequests = 5, kCountIterations = 9, kContinue = 10, kCountResident = 11;
 constexpr uint32_t kTouchArgs = 0, kDeferArgs = 3, kPublishArgs = 6, kCopyArgs = 9, kAnalyzeArgs = 13, kDrawArgs = 16;
 constexpr uint32_t kEmpty = 0xffffffffu, kPinned = 0xffffffffu;
+constexpr uint32_t kOrderMax = 2048;  // CSOrder's sort, one group
 
 uint32_t Groups(uint32_t n, uint32_t size) { return (n + size - 1) / size; }
 
@@ -21,7 +22,7 @@ Ref<Buffer> RawBuffer(Device& device, uint32_t bytes, uint32_t bind, const char*
 
 // cbuffer AsmGpu.
 struct AllocationConstants {
-  uint32_t frameNumber, slotCount, batchPages, drawCount, pad1, maxLevel, requestCapacity, pad0;
+  uint32_t frameNumber, slotCount, batchPages, drawCount, orderedSlots, maxLevel, requestCapacity, pad0;
   uint32_t analyzeGroups[2], viewArgs, pad2;
 };
 
@@ -34,7 +35,7 @@ GpuAllocation::GpuAllocation(Device& device, uint32_t slots, uint32_t pageSize, 
   const uint32_t rw = BIND_UNORDERED_ACCESS | BIND_SHADER_RESOURCE;
   state_ = RawBuffer(device, kStateWords * 4, rw, "asm gpu state");
   slotBuf_ = RawBuffer(device, slots * 8, BIND_UNORDERED_ACCESS, "asm gpu slots");
-  bins_ = RawBuffer(device, 512 * 4, BIND_UNORDERED_ACCESS, "asm gpu age bins");
+  bins_ = RawBuffer(device, (512 + kOrderMax) * 4, BIND_UNORDERED_ACCESS, "asm gpu age bins and slot order");
   changes_ = RawBuffer(device, 2 * batch_ * 8, rw, "asm gpu table changes");
   newPages_ = RawBuffer(device, batch_ * 8, rw, "asm gpu new pages");
   stateUav_ = MakeRawUav(device, state_.get());
@@ -74,6 +75,7 @@ GpuAllocation::GpuAllocation(Device& device, uint32_t slots, uint32_t pageSize, 
   touch_ = cs("CSTouch");
   histogram_ = cs("CSAgeHistogram");
   assign_ = cs("CSAssign");
+  order_ = cs("CSOrder");
   scatter_ = cs("CSScatter");
   defer_ = cs("CSDefer");
   publish_ = device.CreateComputeShader(CompileTechniqueShader("asm/gpu-publish.hlsl", "cs_5_0", "CSPublish"));
@@ -86,7 +88,7 @@ GpuAllocation::GpuAllocation(Device& device, uint32_t slots, uint32_t pageSize, 
   DEPTH_STENCIL_DESC dd;
   dd.DepthFunc = COMPARISON_ALWAYS;
   copyDepth_ = device.CreateDepthStencilState(dd);
-  bytes_ = uint64_t(kStateWords) * 4 + uint64_t(slots) * 8 + 512 * 4 + uint64_t(batch_) * 24 + uint64_t(batch_) * pageSize * pageSize * 4;
+  bytes_ = uint64_t(kStateWords) * 4 + uint64_t(slots) * 8 + (512 + kOrderMax) * 4 + uint64_t(batch_) * 24 + uint64_t(batch_) * pageSize * pageSize * 4;
 }
 
 void GpuAllocation::Reset(DeviceContext& ctx, const std::vector<std::pair<uint32_t, uint32_t>>& pinned) {
@@ -149,7 +151,7 @@ void GpuAllocation::Allocate(DeviceContext& ctx, SceneDrawer& drawer, const GpuA
     bytes_ += uint64_t(t.requestCapacity - missingCapacity_) * 4;
     missingCapacity_ = t.requestCapacity;
   }
-  AllocationConstants c{frame_, slots_, batch_, drawCount_, 0, maxLevel_, t.requestCapacity, 0, {t.analyzeGroups[0], t.analyzeGroups[1]},
+  AllocationConstants c{frame_, slots_, batch_, drawCount_, slots_ <= kOrderMax ? 1u : 0u, maxLevel_, t.requestCapacity, 0, {t.analyzeGroups[0], t.analyzeGroups[1]},
                         ViewArgsByte() / 4, 0};
   ctx.UpdateSubresource(constants_.get(), 0, nullptr, &c, 0, 0);
   ctx.CopyStructureCount(state_.get(), 0, t.requestsUav);
@@ -168,8 +170,10 @@ void GpuAllocation::Allocate(DeviceContext& ctx, SceneDrawer& drawer, const GpuA
   ctx.Dispatch(Groups(slots_, 64), 1, 1);
   ctx.CSSetShader(assign_.get());
   ctx.Dispatch(1, 1, 1);
+  ctx.CSSetShader(order_.get());
+  ctx.Dispatch(1, 1, 1);
   ctx.CSSetShader(scatter_.get());
-  ctx.Dispatch(Groups(slots_, 64), 1, 1);
+  ctx.Dispatch(Groups(slots_ <= kOrderMax ? batch_ : slots_, 64), 1, 1);
   ctx.CSSetShader(defer_.get());
   ctx.DispatchIndirect(args_.get(), kDeferArgs * 4);
   UnorderedAccessView* none[8] = {};

@@ -75,7 +75,7 @@ class GpuAllocation {
   Ref<Texture2D> scratch_;
   Ref<DepthStencilView> scratchDsv_;
   Ref<ShaderResourceView> scratchSrv_;
-  Ref<ComputeShader> prepare_, touch_, histogram_, assign_, scatter_, defer_, publish_;
+  Ref<ComputeShader> prepare_, touch_, histogram_, assign_, order_, scatter_, defer_, publish_;
   Ref<VertexShader> pageVs_, copyVs_;
   Ref<PixelShader> copyPs_;
   Ref<RasterizerState> copyRasterizer_;

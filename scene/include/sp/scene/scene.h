@@ -123,6 +123,9 @@ struct CameraPath {
   std::vector<CameraKey> keys;
 
   Camera at(double t) const;  // t is clamped to [0, 1]
+  // The light's direction at t when the keys carry one (interpolated linearly between keys and
+  // normalised), else nothing: a recorded sun turn replays in the viewer and the bench alike.
+  std::optional<glm::vec3> lightAt(double t) const;
 };
 
 // Camera paths as JSON files, so a path flown in the viewer becomes a lab run (`shadowport bench
