@@ -78,16 +78,18 @@ if part 1; then
 fi
 # 2. Effective resolution against what the close-up reaches, and the steps' costs.
 if part 2; then
-  bench resolution --frames 6 --scene default --path "$OUT/paths/close-up.json" --technique "asm,asm:allocation=gpu" \
+  # At 640x360 (or SIZE2): the lit pass at 320x180 takes 2-5 ms here, too little to compare.
+  SIZE="${SIZE2:-640x360}" bench resolution --frames 8 --scene default --path "$OUT/paths/close-up.json" --technique "asm,asm:allocation=gpu" \
     --param effective_resolution=4096,16384,65536,131072
-  bench resolution-basic --frames 6 --scene default --path "$OUT/paths/close-up.json" --technique "basic:resolution=2048"
+  SIZE="${SIZE2:-640x360}" bench resolution-basic --frames 8 --scene default --path "$OUT/paths/close-up.json" --technique "basic:resolution=2048"
 fi
-# 3. Failure cases: iterations 1 and 4; the small pool holds 36 pages (21 pinned at 3 resident levels).
+# 3. Failure cases: iterations 1 and 4; the small pool holds 36 pages of 64 texels (21 pinned at 3
+#    resident levels), marking every visible sample, against 256.
 if part 3; then
   for path in cut pan sun; do
     bench "$path" --scene default --path "$OUT/paths/$path.json" --technique "asm,asm:allocation=gpu" --param iterations=1,4
   done
-  bench small-pool --scene default --path "$OUT/paths/pan.json" --technique "asm:resident_levels=3,asm:allocation=gpu:resident_levels=3" \
-    --param pool_pages=6,16
+  bench small-pool --scene default --path "$OUT/paths/pan.json" --param pool_pages=6,16 \
+    --technique "asm:resident_levels=3:mark=visible:page_size=64,asm:allocation=gpu:resident_levels=3:mark=visible:page_size=64"
 fi
 /usr/bin/python3 "$ROOT/eval/experiments/asm_tables.py" "$OUT"

@@ -105,7 +105,7 @@ def resolution(out):
 
 def stability(out):
     for name, what in (("cut", "camera cut A -> B halfway"), ("pan", "fast pan, 90 degrees over the path"),
-                       ("sun", "sun turning 20 degrees over the path"), ("small-pool", "fast pan with a pool of 6^2 or 16^2 pages, 3 resident levels")):
+                       ("sun", "sun turning 20 degrees over the path"), ("small-pool", "fast pan, mark=visible, 64-texel pages: a pool of 6^2 or 16^2 pages, 3 resident levels")):
         rs = runs(out, name)
         if not rs:
             continue

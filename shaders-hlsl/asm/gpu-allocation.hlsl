@@ -71,7 +71,8 @@ static const uint kDeferArgs = 3;
 static const uint kPublishArgs = 6;
 static const uint kCopyArgs = 9;     // DrawInstanced: 6 vertices, one instance per new page
 static const uint kAnalyzeArgs = 13; // the next iteration's CSAnalyze dispatch
-static const uint kDrawArgs = 16;    // DrawIndexedInstanced per scene draw item, 5 words each,
+static const uint kClearArgs = 16;   // DrawInstanced: 3 vertices, one instance per new page
+static const uint kDrawArgs = 20;    // DrawIndexedInstanced per scene draw item, 5 words each,
                                      // then (at viewArgs) the same for the next view pass
 
 static const uint kEmpty = 0xffffffffu;      // a slot's key: no page
@@ -175,6 +176,7 @@ groupshared uint gScan[256];
   Args.Store3(kDeferArgs * 4, uint3((missing + 63) / 64, 1, 1));
   Args.Store3(kPublishArgs * 4, uint3((2 * served + 63) / 64, 1, 1));
   Args.Store4(kCopyArgs * 4, uint4(6, served, 0, 0));
+  Args.Store4(kClearArgs * 4, uint4(3, served, 0, 0));
 }
 
 static const uint kOrderMax = 2048;
@@ -185,13 +187,14 @@ bool Before(uint a, uint b) {
   return gKey[a].x != gKey[b].x ? gKey[a].x < gKey[b].x : gKey[a].y != gKey[b].y ? gKey[a].y < gKey[b].y : gItem[a] < gItem[b];
 }
 
-// Bitonic sort of gKey/gItem (kOrderMax entries, two per thread), ascending.
-void SortShared(uint t) {
-  for (uint k = 2; k <= kOrderMax; k <<= 1)
+// Bitonic sort of the first n entries of gKey/gItem (n a power of two <= kOrderMax, the same in
+// every thread: the barriers stay in uniform control flow), ascending.
+void SortShared(uint t, uint n) {
+  for (uint k = 2; k <= n; k <<= 1)
     for (uint j = k >> 1; j > 0; j >>= 1) {
       [unroll] for (uint h = 0; h < 2; ++h) {
         uint i = t + h * (kOrderMax / 2), l = i ^ j;
-        if (l > i && (((i & k) == 0) == Before(l, i))) {
+        if (i < n && l > i && (((i & k) == 0) == Before(l, i))) {
           uint2 kk = gKey[i];
           gKey[i] = gKey[l];
           gKey[l] = kk;
@@ -204,32 +207,52 @@ void SortShared(uint t) {
     }
 }
 
+uint PowerOfTwoAtLeast(uint v) { return v <= 1 ? 1 : 1u << (firstbithigh(v - 1) + 1); }
+
+// Order matters only under pressure: the missing list when not all of it is served now, the
+// slots when a page is evicted (free slots are alike: which one a page gets changes only where
+// it lives, and evictions are ranked by the page a slot holds, not by the slot). Otherwise this
+// pass sorts nothing (sorting every iteration cost 20 ms per iteration on lavapipe).
+
 [numthreads(1024, 1, 1)] void CSOrder(uint t : SV_GroupIndex) {
   uint missing = min(State.Load(kMissing * 4), kOrderMax);
-  [unroll] for (uint h = 0; h < 2; ++h) {
-    uint i = t + h * (kOrderMax / 2);
-    gKey[i] = i < missing ? uint2(Missing.Load(i * 4), 0) : uint2(kEmpty, kEmpty);
-    gItem[i] = i;
+  uint served = State.Load(kServed * 4);
+  if (missing > served) {
+    uint n = PowerOfTwoAtLeast(missing);
+    [unroll] for (uint h = 0; h < 2; ++h) {
+      uint i = t + h * (kOrderMax / 2);
+      gKey[i] = i < missing ? uint2(Missing.Load(i * 4), 0) : uint2(kEmpty, kEmpty);
+      gItem[i] = i;
+    }
+    GroupMemoryBarrierWithGroupSync();
+    SortShared(t, n);
+    [unroll] for (uint h2 = 0; h2 < 2; ++h2) {
+      uint i = t + h2 * (kOrderMax / 2);
+      if (i < missing) Missing.Store(i * 4, gKey[i].x);
+    }
+    GroupMemoryBarrierWithGroupSync();
   }
-  GroupMemoryBarrierWithGroupSync();
-  SortShared(t);
-  [unroll] for (uint h2 = 0; h2 < 2; ++h2) {
-    uint i = t + h2 * (kOrderMax / 2);
-    if (i < missing) Missing.Store(i * 4, gKey[i].x);
-  }
-  GroupMemoryBarrierWithGroupSync();
   if (orderedSlots == 0) return;
+  // Bin 0 holds the free slots: bin 1's first rank is their count.
+  bool evicts = served > Bins.Load((256 + 1) * 4);
   [unroll] for (uint h3 = 0; h3 < 2; ++h3) {
     uint i = t + h3 * (kOrderMax / 2);
     int bin = i < slotCount ? SlotBin(i) : -1;
-    gKey[i] = bin >= 0 ? uint2(uint(bin), Slots.Load(i * 8)) : uint2(kEmpty, kEmpty);
+    gKey[i] = bin >= 0 ? uint2(uint(bin), evicts ? Slots.Load(i * 8) : 0) : uint2(kEmpty, kEmpty);
     gItem[i] = i;
   }
   GroupMemoryBarrierWithGroupSync();
-  SortShared(t);
+  if (evicts) SortShared(t, PowerOfTwoAtLeast(slotCount));
+  else if (t == 0) {
+    // No eviction: the free slots in index order, found by one thread (at most kOrderMax).
+    uint r = 0;
+    for (uint i = 0; i < slotCount && r < served; ++i)
+      if (gKey[i].x == 0) gItem[r++] = i;
+  }
+  GroupMemoryBarrierWithGroupSync();
   [unroll] for (uint h4 = 0; h4 < 2; ++h4) {
     uint i = t + h4 * (kOrderMax / 2);
-    Bins.Store((512 + i) * 4, gItem[i]);
+    if (i < served) Bins.Store((512 + i) * 4, gItem[i]);
   }
 }
 

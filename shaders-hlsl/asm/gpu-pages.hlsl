@@ -1,11 +1,13 @@
 // Adaptive shadow maps, allocation=gpu: rendering the pages the GPU allocated, with indirect
 // draws (instance i = the i-th new page of this iteration, NewPages[i] = (key, slot)).
+//  VSClearSlice  a triangle over slice i at depth 1 (depth test ALWAYS): resets the slice;
 //  VSPage  the scene's depth into slice i of a scratch depth array of page-sized slices: the
 //          light's projection cropped to the page (as the readback mode's PageViewProj), so the
 //          rasterizer's viewport and clipping are the page's own and the depth bias is the same;
 //  VSCopy/PSCopy  a quad over the page's slot in the pool copying slice i (SV_Depth, depth test
 //          ALWAYS): one pass writes every page of the iteration wherever its slot is, which a
 //          viewport or scissor set by the CPU could not.
+//! vs_5_0 VSClearSlice
 //! vs_5_0 VSPage
 //! vs_5_0 VSCopy
 //! ps_5_0 PSCopy
@@ -28,6 +30,14 @@ struct PageOut {
   float4 pos : SV_Position;
   uint slice : SV_RenderTargetArrayIndex;
 };
+
+PageOut VSClearSlice(uint vertex : SV_VertexID, uint instance : SV_InstanceID) {
+  float2 t = float2((vertex << 1) & 2, vertex & 2);
+  PageOut o;
+  o.pos = float4(t * 2.0 - 1.0, 1.0, 1.0);
+  o.slice = instance;
+  return o;
+}
 
 PageOut VSPage(float3 pos : POSITION, uint instance : SV_InstanceID) {
   uint key = NewPages.Load(instance * 8);

@@ -144,6 +144,8 @@ class AsmTechnique final : public Technique, public AsmCounterSource {
     DEPTH_STENCIL_DESC dd;
     dd.DepthFunc = COMPARISON_ALWAYS;
     clearDepth_ = device.CreateDepthStencilState(dd);
+    dd.DepthFunc = COMPARISON_LESS_EQUAL;
+    redrawDepth_ = device.CreateDepthStencilState(dd);
 
     constants_ = MakeConstantBuffer(device, sizeof(Constants), "AsmShadow constants");
     analysisConstants_ = MakeConstantBuffer(device, sizeof(AnalysisConstants), "AsmAnalysis constants");
@@ -468,13 +470,18 @@ class AsmTechnique final : public Technique, public AsmCounterSource {
     ctx.CSSetShaderResources(0, 2, none);
     RenderTargetView* rtv = viewRtv_.get();
     ctx.OMSetRenderTargets(1, &rtv, viewDsv_.get());
+    // An early iteration draws the same geometry from the same camera over the previous
+    // iteration's view: with LESS_EQUAL the nearest surface overwrites itself and nothing else
+    // passes, so no clear is needed, and an iteration that draws nothing costs nothing.
     const float clear[4] = {-1, -1, 1, -1};
-    ctx.ClearRenderTargetView(viewRtv_.get(), clear);
-    ctx.ClearDepthStencilView(viewDsv_.get(), CLEAR_DEPTH, 1.0f, 0);
+    if (!early) {
+      ctx.ClearRenderTargetView(viewRtv_.get(), clear);
+      ctx.ClearDepthStencilView(viewDsv_.get(), CLEAR_DEPTH, 1.0f, 0);
+    }
     VIEWPORT vp{0, 0, float(viewWidth_), float(viewHeight_), 0, 1};
     ctx.RSSetViewports(1, &vp);
     ctx.RSSetState(viewRasterizer_.get());
-    ctx.OMSetDepthStencilState(nullptr, 0);
+    ctx.OMSetDepthStencilState(early ? redrawDepth_.get() : nullptr, 0);
     BindLighting(ctx);
     glm::mat4 camera = frame.cameraProj * frame.cameraView;
     if (early)
@@ -532,7 +539,7 @@ class AsmTechnique final : public Technique, public AsmCounterSource {
   Ref<DepthStencilView> viewDsv_;
   uint32_t viewWidth_ = 0, viewHeight_ = 0;
   Ref<RasterizerState> pageRasterizer_, clearRasterizer_, viewRasterizer_;
-  Ref<DepthStencilState> clearDepth_;
+  Ref<DepthStencilState> clearDepth_, redrawDepth_;
   Ref<Buffer> constants_, analysisConstants_;
   Ref<VertexShader> clearVs_, viewVs_;
   Ref<PixelShader> viewPs_;

@@ -10,7 +10,7 @@ namespace {
 // Word offsets in State and Args: must match shaders-hlsl/asm/gpu-allocation.hlsl.
 constexpr uint32_t kStateWords = 16;
 constexpr uint32_t kCountRequests = 5, kCountIterations = 9, kContinue = 10, kCountResident = 11;
-constexpr uint32_t kTouchArgs = 0, kDeferArgs = 3, kPublishArgs = 6, kCopyArgs = 9, kAnalyzeArgs = 13, kDrawArgs = 16;
+constexpr uint32_t kTouchArgs = 0, kDeferArgs = 3, kPublishArgs = 6, kCopyArgs = 9, kAnalyzeArgs = 13, kClearArgs = 16, kDrawArgs = 20;
 constexpr uint32_t kEmpty = 0xffffffffu, kPinned = 0xffffffffu;
 constexpr uint32_t kOrderMax = 2048;  // CSOrder's sort, one group
 
@@ -82,6 +82,7 @@ GpuAllocation::GpuAllocation(Device& device, uint32_t slots, uint32_t pageSize, 
   pageVs_ = device.CreateVertexShader(CompileTechniqueShader("asm/gpu-pages.hlsl", "vs_5_0", "VSPage"));
   copyVs_ = device.CreateVertexShader(CompileTechniqueShader("asm/gpu-pages.hlsl", "vs_5_0", "VSCopy"));
   copyPs_ = device.CreatePixelShader(CompileTechniqueShader("asm/gpu-pages.hlsl", "ps_5_0", "PSCopy"));
+  clearVs_ = device.CreateVertexShader(CompileTechniqueShader("asm/gpu-pages.hlsl", "vs_5_0", "VSClearSlice"));
   RASTERIZER_DESC rd;
   rd.CullMode = CULL_NONE;
   copyRasterizer_ = device.CreateRasterizerState(rd);
@@ -207,13 +208,21 @@ void GpuAllocation::Publish(DeviceContext& ctx, const GpuAllocationTargets& t) {
 }
 
 void GpuAllocation::RenderNewPages(DeviceContext& ctx, SceneDrawer& drawer, const GpuAllocationTargets& t) {
-  // Depth of every new page into its scratch slice: the page's own viewport and scissor.
+  // Depth of every new page into its scratch slice: the page's own viewport and scissor. The
+  // slices are reset by a triangle per new page at depth 1 (clearing the whole array every
+  // iteration cost batch slices, however few pages were new).
   ctx.OMSetRenderTargets(0, nullptr, scratchDsv_.get());
-  ctx.ClearDepthStencilView(scratchDsv_.get(), CLEAR_DEPTH, 1.0f, 0);
   VIEWPORT vp{0, 0, float(pageSize_), float(pageSize_), 0, 1};
   RECT sc{0, 0, int32_t(pageSize_), int32_t(pageSize_)};
   ctx.RSSetViewports(1, &vp);
   ctx.RSSetScissorRects(1, &sc);
+  ctx.RSSetState(copyRasterizer_.get());
+  ctx.OMSetDepthStencilState(copyDepth_.get(), 0);
+  ctx.IASetInputLayout(nullptr);
+  ctx.IASetPrimitiveTopology(PRIMITIVE_TOPOLOGY_TRIANGLELIST);
+  ctx.VSSetShader(clearVs_.get());
+  ctx.PSSetShader(nullptr);
+  ctx.DrawInstancedIndirect(args_.get(), kClearArgs * 4);
   ctx.RSSetState(t.pageRasterizer);
   ctx.OMSetDepthStencilState(nullptr, 0);
   ctx.VSSetConstantBuffers(2, {t.shadowConstants});

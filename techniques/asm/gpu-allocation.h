@@ -76,7 +76,7 @@ class GpuAllocation {
   Ref<DepthStencilView> scratchDsv_;
   Ref<ShaderResourceView> scratchSrv_;
   Ref<ComputeShader> prepare_, touch_, histogram_, assign_, order_, scatter_, defer_, publish_;
-  Ref<VertexShader> pageVs_, copyVs_;
+  Ref<VertexShader> pageVs_, copyVs_, clearVs_;
   Ref<PixelShader> copyPs_;
   Ref<RasterizerState> copyRasterizer_;
   Ref<DepthStencilState> copyDepth_;
