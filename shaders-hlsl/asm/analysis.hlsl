@@ -48,21 +48,38 @@ cbuffer AsmAnalysis : register(b0) {
 
 Texture2D<float4> View : register(t0);
 RWByteAddressBuffer Requested : register(u0);
+#if ASM_PREFIX_COMPACTION
+// compaction=prefix: four request slots per pixel (kNoRequest where none), packed into the request
+// stream afterwards by asm/compaction.hlsl's prefix sum, the paper's stream compaction.
+RWStructuredBuffer<uint> PixelRequests : register(u1);
+static const uint kNoRequest = 0xffffffffu;
+static uint gSlot = 0;
+#else
 AppendStructuredBuffer<uint> Requests : register(u1);
+#endif
 
-// Appends the page of `level` holding uv to the request stream unless this frame asked for it
-// already (the per-frame bitmap: levels 0..level-1 hold (4^level - 1) / 3 pages before it).
-void RequestPage(float2 uv, uint level) {
+// Requests the page of `level` holding uv unless this frame asked for it already (the per-frame
+// bitmap: levels 0..level-1 hold (4^level - 1) / 3 pages before it).
+void RequestPage(uint pixel, float2 uv, uint level) {
   uint n = 1u << level;
   uint2 p = min(uint2(saturate(uv) * float(n)), uint2(n - 1, n - 1));
   uint bit = ((1u << (2u * level)) - 1u) / 3u + p.y * n + p.x;
   uint mask = 1u << (bit & 31u), before;
   Requested.InterlockedOr((bit >> 5) * 4, mask, before);
-  if ((before & mask) == 0) Requests.Append((level << 28) | (p.y << 14) | p.x);
+  if ((before & mask) != 0) return;
+#if ASM_PREFIX_COMPACTION
+  PixelRequests[pixel * 4 + gSlot++] = (level << 28) | (p.y << 14) | p.x;
+#else
+  Requests.Append((level << 28) | (p.y << 14) | p.x);
+#endif
 }
 
 [numthreads(8, 8, 1)] void CSAnalyze(uint3 id : SV_DispatchThreadID) {
   if (any(id.xy >= analysisSize)) return;
+  uint pixel = id.y * analysisSize.x + id.x;
+#if ASM_PREFIX_COMPACTION
+  [unroll] for (uint k0 = 0; k0 < 4; ++k0) PixelRequests[pixel * 4 + k0] = kNoRequest;
+#endif
   float4 c = View.Load(int3(id.xy, 0));
   if (c.w < 0.0) return;
   if (markVisible != 0) {
@@ -74,7 +91,7 @@ void RequestPage(float2 uv, uint level) {
     float2 t0 = (floor(c.xy * res - 0.5) + 0.5) / res;
     [unroll] for (int k = 0; k < 4; ++k) {
       float2 t = t0 + float2(k & 1, k >> 1) / res;
-      if (all(t >= 0.0) && all(t <= 1.0)) RequestPage(t, level);
+      if (all(t >= 0.0) && all(t <= 1.0)) RequestPage(pixel, t, level);
     }
     return;
   }
@@ -89,7 +106,7 @@ void RequestPage(float2 uv, uint level) {
   float gx = (s[0][2] + 2.0 * s[1][2] + s[2][2]) - (s[0][0] + 2.0 * s[1][0] + s[2][0]);
   float gy = (s[2][0] + 2.0 * s[2][1] + s[2][2]) - (s[0][0] + 2.0 * s[0][1] + s[0][2]);
   if (sqrt(gx * gx + gy * gy) < edgeThreshold) return;
-  RequestPage(c.xy, min(uint(c.w), analysisMaxLevel));
+  RequestPage(pixel, c.xy, min(uint(c.w), analysisMaxLevel));
 }
 
 float4 VSClearPage(uint id : SV_VertexID) : SV_Position {

@@ -59,6 +59,7 @@ class AsmTechnique final : public Technique, public AsmCounterSource {
         {ParamSpec::Int, "iterations", "refinement iterations (analysis, readback, allocation, page rendering) per frame at most", "4", 1, 64, {}},
         {ParamSpec::Choice, "allocation", "readback: the paper's refinement (requests read back, pages allocated and drawn by the CPU); gpu: allocation, page tables and page drawing on the GPU, nothing read back", "readback", 0, 0, {"readback", "gpu"}},
         {ParamSpec::Choice, "mark", "which pixels request pages: edges (Sobel boundaries of the shadow, the paper) or visible (every visible sample and its filter footprint, as virtual shadow maps)", "edges", 0, 0, {"edges", "visible"}},
+        {ParamSpec::Choice, "compaction", "how the analysis' requests become a dense stream: append (an AppendStructuredBuffer's counter) or prefix (the paper's stream compaction: a prefix sum over four request slots per pixel, order-preserving)", "append", 0, 0, {"append", "prefix"}},
         {ParamSpec::Int, "gpu_batch", "allocation=gpu: pages allocated and drawn per iteration at most (slices of the scratch depth array); the rest wait for the next iteration", "64", 1, 2048, {}},
         {ParamSpec::Float, "edge_threshold", "Sobel gradient magnitude of the shadow term above which a pixel is a shadow boundary", "0.1", 0.0, 8.0, {}},
         {ParamSpec::Int, "depth_bias", "D3D11 DepthBias (units of the depth format)", "200", -1e7, 1e7, {}},
@@ -97,6 +98,7 @@ class AsmTechnique final : public Technique, public AsmCounterSource {
                                   " and leave room for refinement; raise pool_pages or lower resident_levels");
     gpuAllocation_ = p.getChoice("allocation") == "gpu";
     markVisible_ = p.getChoice("mark") == "visible";
+    prefixCompaction_ = p.getChoice("compaction") == "prefix";
     if (gpuAllocation_ && !device.Info().vsRenderTargetArrayIndex)
       throw std::invalid_argument(std::string("allocation: gpu draws each new page into its own slice with SV_RenderTargetArrayIndex from the vertex shader, which this ") +
                                   BackendName(device.GetBackend()) + " device lacks (DeviceInfo::vsRenderTargetArrayIndex)");
@@ -152,7 +154,16 @@ class AsmTechnique final : public Technique, public AsmCounterSource {
     clearVs_ = device.CreateVertexShader(CompileTechniqueShader("asm/analysis.hlsl", "vs_5_0", "VSClearPage"));
     viewVs_ = device.CreateVertexShader(CompileTechniqueShader("asm/analysis.hlsl", "vs_5_0", "VSView"));
     viewPs_ = device.CreatePixelShader(CompileTechniqueShader("asm/analysis.hlsl", "ps_5_0", "PSView"));
-    analyzeCs_ = device.CreateComputeShader(CompileTechniqueShader("asm/analysis.hlsl", "cs_5_0", "CSAnalyze"));
+    analyzeCs_ = device.CreateComputeShader(
+        CompileTechniqueShader("asm/analysis.hlsl", "cs_5_0", "CSAnalyze", {{"ASM_PREFIX_COMPACTION", prefixCompaction_ ? "1" : "0"}}));
+    if (prefixCompaction_) {
+      countBlocksCs_ = device.CreateComputeShader(CompileTechniqueShader("asm/compaction.hlsl", "cs_5_0", "CSCountBlocks"));
+      scanBlocksCs_ = device.CreateComputeShader(CompileTechniqueShader("asm/compaction.hlsl", "cs_5_0", "CSScanBlocks"));
+      scatterCs_ = device.CreateComputeShader(CompileTechniqueShader("asm/compaction.hlsl", "cs_5_0", "CSScatter"));
+      compactionConstants_ = MakeConstantBuffer(device, 16, "AsmCompaction constants");
+      prefixCount_ = MakeRawBuffer(device, 16, BIND_UNORDERED_ACCESS, "asm compacted request count");
+      prefixCountUav_ = MakeRawUav(device, prefixCount_.get());
+    }
     lastFit_ = glm::mat4(0.0f);
     viewWidth_ = viewHeight_ = 0;
     gpu_.reset();
@@ -313,7 +324,8 @@ class AsmTechnique final : public Technique, public AsmCounterSource {
     t.shadowConstants = constants_.get();
     t.poolDsv = pool_.dsv.get();
     t.pageRasterizer = pageRasterizer_.get();
-    t.requestCapacity = uint32_t(requestBytes_ / 4);
+    t.requestCapacity = requestCapacity_;
+    if (prefixCompaction_) t.requestCount = prefixCount_.get();
     t.analyzeGroups[0] = (viewWidth_ + 7) / 8;
     t.analyzeGroups[1] = (viewHeight_ + 7) / 8;
     for (uint32_t it = 0; it < iterations_; ++it) {
@@ -441,7 +453,25 @@ class AsmTechnique final : public Technique, public AsmCounterSource {
     requestsUav_ = device.CreateUnorderedAccessView(requests_.get(), &ud);
     requestsSrv_ = gpuAllocation_ ? device.CreateShaderResourceView(requests_.get()) : nullptr;
     requestsStaging_ = MakeStaging(device, capacity * 4, "asm requests readback");
+    requestCapacity_ = capacity;
     requestBytes_ = uint64_t(capacity) * 4;
+    if (prefixCompaction_) {
+      ud.Buffer.Flags = 0;
+      requestsPlainUav_ = device.CreateUnorderedAccessView(requests_.get(), &ud);
+      BUFFER_DESC pd;
+      pd.ByteWidth = w * h * 4 * 4;
+      pd.BindFlags = BIND_UNORDERED_ACCESS | BIND_SHADER_RESOURCE;
+      pd.MiscFlags = RESOURCE_MISC_BUFFER_STRUCTURED;
+      pd.StructureByteStride = 4;
+      pixelRequests_ = device.CreateBuffer(pd);
+      pixelRequests_->SetDebugName("asm request slots per pixel");
+      pixelRequestsUav_ = device.CreateUnorderedAccessView(pixelRequests_.get());
+      pixelRequestsSrv_ = device.CreateShaderResourceView(pixelRequests_.get());
+      uint32_t blocks = (w * h * 4 + 1023) / 1024;
+      blockSums_ = MakeRawBuffer(device, blocks * 8, BIND_UNORDERED_ACCESS, "asm compaction block sums");
+      blockSumsUav_ = MakeRawUav(device, blockSums_.get());
+      requestBytes_ += uint64_t(w) * h * 16 + blocks * 8;
+    }
   }
 
   // One analysis: the camera's view with the current pages, the Sobel pass appending requests,
@@ -452,10 +482,10 @@ class AsmTechnique final : public Technique, public AsmCounterSource {
       DrawAnalysis(ctx, drawer, frame);
     }
     GpuTimer::Scope timed(frame.timer, ctx, "readback");
-    ctx.CopyStructureCount(countBuffer_.get(), 0, requestsUav_.get());
+    CopyRequestCount(ctx, countBuffer_.get());
     ctx.CopyResource(countStaging_.get(), countBuffer_.get());
     uint32_t count = ReadWords(ctx, countStaging_.get(), 1)[0];
-    if (uint64_t(count) * 4 > requestBytes_) throw std::runtime_error("asm: request count " + std::to_string(count) + " exceeds the request buffer");
+    if (count > requestCapacity_) throw std::runtime_error("asm: request count " + std::to_string(count) + " exceeds the request buffer");
     if (count == 0) return {};
     BOX box{0, 0, 0, count * 4, 1, 1};
     ctx.CopySubresourceRegion(requestsStaging_.get(), 0, 0, 0, 0, requests_.get(), 0, &box);
@@ -495,7 +525,7 @@ class AsmTechnique final : public Technique, public AsmCounterSource {
     ctx.CSSetShader(analyzeCs_.get());
     ctx.CSSetConstantBuffers(0, {analysisConstants_.get()});
     ctx.CSSetShaderResources(0, {viewSrv_.get()});
-    UnorderedAccessView* uavs[2] = {requestedUav_.get(), requestsUav_.get()};
+    UnorderedAccessView* uavs[2] = {requestedUav_.get(), prefixCompaction_ ? pixelRequestsUav_.get() : requestsUav_.get()};
     const uint32_t counts[2] = {0xffffffffu, 0};
     ctx.CSSetUnorderedAccessViews(0, 2, uavs, counts);
     if (early)
@@ -505,6 +535,38 @@ class AsmTechnique final : public Technique, public AsmCounterSource {
     UnorderedAccessView* noUavs[2] = {};
     ctx.CSSetUnorderedAccessViews(0, 2, noUavs, nullptr);
     ctx.CSSetShaderResources(0, 2, none);
+    if (prefixCompaction_) Compact(ctx, frame.timer);
+  }
+
+  // compaction=prefix (asm/compaction.hlsl): the request slots of every pixel packed into the
+  // request stream, its length into prefixCount_.
+  void Compact(DeviceContext& ctx, GpuTimer* timer) {
+    GpuTimer::Scope timed(timer, ctx, "compaction");
+    uint32_t slots = viewWidth_ * viewHeight_ * 4, blocks = (slots + 1023) / 1024;
+    const uint32_t c[4] = {slots, blocks, 0, 0};
+    ctx.UpdateSubresource(compactionConstants_.get(), 0, nullptr, c, 0, 0);
+    ctx.CSSetConstantBuffers(0, {compactionConstants_.get()});
+    ctx.CSSetShaderResources(0, {pixelRequestsSrv_.get()});
+    ctx.CSSetUnorderedAccessViews(0, {blockSumsUav_.get(), requestsPlainUav_.get(), prefixCountUav_.get()});
+    ctx.CSSetShader(countBlocksCs_.get());
+    ctx.Dispatch(blocks, 1, 1);
+    ctx.CSSetShader(scanBlocksCs_.get());
+    ctx.Dispatch(1, 1, 1);
+    ctx.CSSetShader(scatterCs_.get());
+    ctx.Dispatch(blocks, 1, 1);
+    ctx.CSSetUnorderedAccessViews(0, {nullptr, nullptr, nullptr});
+    ctx.CSSetShaderResources(0, {nullptr});
+  }
+
+  // The request stream's length into word 0 of `dst`: the append buffer's hidden counter, or
+  // the prefix sum's total.
+  void CopyRequestCount(DeviceContext& ctx, Buffer* dst) {
+    if (!prefixCompaction_) {
+      ctx.CopyStructureCount(dst, 0, requestsUav_.get());
+      return;
+    }
+    BOX box{0, 0, 0, 4, 1, 1};
+    ctx.CopySubresourceRegion(dst, 0, 0, 0, 0, prefixCount_.get(), 0, &box);
   }
 
   static std::vector<uint32_t> ReadWords(DeviceContext& ctx, Buffer* staging, uint32_t n) {
@@ -525,10 +587,16 @@ class AsmTechnique final : public Technique, public AsmCounterSource {
   Ref<ShaderResourceView> tableSrv_;
   std::vector<std::vector<uint32_t>> tables_;  // CPU copy of each level's entries
   uint64_t tableBytes_ = 0, requestBytes_ = 0;
+  uint32_t requestCapacity_ = 0;
   uint32_t bitmapWords_ = 0;
   Ref<Buffer> requested_, requests_, requestsStaging_, countBuffer_, countStaging_;
   Ref<UnorderedAccessView> requestedUav_, requestsUav_;
   Ref<ShaderResourceView> requestsSrv_;
+  bool prefixCompaction_ = false;
+  Ref<Buffer> pixelRequests_, blockSums_, prefixCount_, compactionConstants_;
+  Ref<UnorderedAccessView> pixelRequestsUav_, blockSumsUav_, prefixCountUav_, requestsPlainUav_;
+  Ref<ShaderResourceView> pixelRequestsSrv_;
+  Ref<ComputeShader> countBlocksCs_, scanBlocksCs_, scatterCs_;
   bool gpuAllocation_ = false, markVisible_ = false;
   std::unique_ptr<asmap::GpuAllocation> gpu_;
   uint64_t sceneTriangles_ = 0;

@@ -155,7 +155,12 @@ void GpuAllocation::Allocate(DeviceContext& ctx, SceneDrawer& drawer, const GpuA
   AllocationConstants c{frame_, slots_, batch_, drawCount_, slots_ <= kOrderMax ? 1u : 0u, maxLevel_, t.requestCapacity, 0, {t.analyzeGroups[0], t.analyzeGroups[1]},
                         ViewArgsByte() / 4, 0};
   ctx.UpdateSubresource(constants_.get(), 0, nullptr, &c, 0, 0);
-  ctx.CopyStructureCount(state_.get(), 0, t.requestsUav);
+  if (t.requestCount) {
+    BOX box{0, 0, 0, 4, 1, 1};
+    ctx.CopySubresourceRegion(state_.get(), 0, 0, 0, 0, t.requestCount, 0, &box);
+  } else {
+    ctx.CopyStructureCount(state_.get(), 0, t.requestsUav);
+  }
 
   // The page tables are read here and written by Publish: no stage may hold them as a resource.
   ctx.PSSetShaderResources(0, {nullptr, nullptr});

@@ -25,6 +25,8 @@ struct GpuAllocationTargets {
   DepthStencilView* poolDsv = nullptr;
   RasterizerState* pageRasterizer = nullptr;   // depth bias, no depth clip, scissor on
   uint32_t requestCapacity = 0;                // elements of the request stream
+  Buffer* requestCount = nullptr;              // word 0: the stream's length (compaction=prefix);
+                                               // null: the append view's hidden counter
   uint32_t analyzeGroups[2] = {0, 0};          // the analysis' dispatch over the view
 };
 

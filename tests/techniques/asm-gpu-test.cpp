@@ -96,6 +96,30 @@ TEST_P(AsmGpuAllocationTest, SamePageSetAndPictureAsReadbackOnAStaticView) {
   }
 }
 
+// compaction=prefix (the paper's stream compaction by a prefix sum) against the append buffer:
+// the same requests, so the same pages and picture, in both modes and for either marking.
+TEST_P(AsmGpuAllocationTest, PrefixSumCompactionRequestsWhatTheAppendBufferDoes) {
+  const uint32_t W = 160, H = 96;
+  scene::Scene s = ObliqueBox();
+  for (const char* allocation : {"readback", "gpu"})
+    for (const char* mark : {"edges", "visible"}) {
+      SCOPED_TRACE(std::string(allocation) + " " + mark);
+      TechniqueParams p = kSmallPages;
+      p["allocation"] = allocation;
+      p["mark"] = mark;
+      Converged append = RenderUntilConverged(device(), s, p, W, H);
+      p["compaction"] = "prefix";
+      Converged prefix = RenderUntilConverged(device(), s, p, W, H);
+      EXPECT_GT(prefix.first.requests, 10u);
+      EXPECT_EQ(prefix.first.requests, append.first.requests);
+      EXPECT_EQ(prefix.first.pagesRendered, append.first.pagesRendered);
+      EXPECT_EQ(prefix.pages, append.pages);
+      EXPECT_EQ(DifferentPixels(prefix.image, append.image), 0);
+      std::printf("asm %s %s: prefix compaction %u requests, %zu pages (append %u, %zu)\n", allocation, mark, prefix.first.requests,
+                  prefix.pages.size(), append.first.requests, append.pages.size());
+    }
+}
+
 // gpu_batch 3: at most three pages drawn per iteration, the rest asked for again by the next
 // iteration's analysis; with enough iterations the same pages end resident.
 TEST_P(AsmGpuAllocationTest, SmallBatchDefersPagesWithoutLosingThem) {
