@@ -4,7 +4,8 @@
 #     and sdsm 4 x 1024^2 (16 MiB of depth each) on the default scene's slow pan and on a close-up;
 #  2. the paper's figures on the close-up: effective resolution reached (pages per level), memory,
 #     the lit pass's cost against basic 2048^2 (the paper: 73-91 %), and each refinement step's
-#     GPU time (analysis, readback or allocation, pages);
+#     GPU time (analysis, compaction by append buffer or prefix sum, readback or allocation,
+#     pages) with the sun turning, so that every frame refines;
 #  3. stability where it fails: a camera cut (frames to converge after it), a fast pan (refinement
 #     lagging), a moving light (everything invalidated every frame) and a pool too small for the
 #     view (unserved pages), each with iterations 1 and 4, readback and gpu.
@@ -82,6 +83,10 @@ if part 2; then
   SIZE="${SIZE2:-640x360}" bench resolution --frames 8 --scene default --path "$OUT/paths/close-up.json" --technique "asm,asm:allocation=gpu" \
     --param effective_resolution=4096,16384,65536,131072
   SIZE="${SIZE2:-640x360}" bench resolution-basic --frames 8 --scene default --path "$OUT/paths/close-up.json" --technique "basic:resolution=2048"
+  # The paper's compaction (prefix sum) against the append buffer, on the sun path (every frame
+  # refines from scratch, so every step runs every frame), marking every visible sample.
+  SIZE="${SIZE2:-640x360}" bench compaction --frames 8 --scene default --path "$OUT/paths/sun.json" --param compaction=append,prefix \
+    --technique "asm:mark=visible:iterations=1,asm:allocation=gpu:mark=visible:iterations=1"
 fi
 # 3. Failure cases: iterations 1 and 4; the small pool holds 36 pages of 64 texels (21 pinned at 3
 #    resident levels), marking every visible sample, against 256.

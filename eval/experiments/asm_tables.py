@@ -103,6 +103,25 @@ def resolution(out):
              fmt(m["misclassified_pct"], 3), same_on_gl(b)])
 
 
+def steps(out):
+    rs = runs(out, "compaction")
+    if not rs:
+        return
+    print(f"\n**Each refinement step, sun turning (every frame refines from the resident levels), mark=visible, one iteration** "
+          f"({rs[0]['size'][0]}x{rs[0]['size'][1]}, {rs[0]['frames']} frames; GPU ms, medians)\n")
+    header(["mode", "compaction", "backend", "view + marking", "compaction pass", "readback", "allocation", "pages", "shadow (all)",
+            "requests per frame", "pages per frame"])
+    for r in rs:
+        p, m = r["params"], r["metrics"]
+        frames = m["asm_refinement"]["frames"]
+        req = sorted(f["requests"] for f in frames)[len(frames) // 2]
+        pages = sorted(f["pages_rendered"] for f in frames)[len(frames) // 2]
+        # The timer's "analysis" pass holds the compaction pass (compaction=prefix runs inside it).
+        view = ms(r, "analysis") - (ms(r, "compaction") or 0.0)
+        row([p["allocation"], p["compaction"], r["backend"], fmt(view), fmt(ms(r, "compaction"), 2), fmt(ms(r, "readback"), 2),
+             fmt(ms(r, "allocation"), 2), fmt(ms(r, "pages")), fmt(ms(r, "shadow")), req, pages])
+
+
 def stability(out):
     for name, what in (("cut", "camera cut A -> B halfway"), ("pan", "fast pan, 90 degrees over the path"),
                        ("sun", "sun turning 20 degrees over the path"), ("small-pool", "fast pan, mark=visible, 64-texel pages: a pool of 6^2 or 16^2 pages, 3 resident levels")):
@@ -133,6 +152,7 @@ def main():
     out = sys.argv[1] if len(sys.argv) > 1 else "out/asm"
     equal_memory(out)
     resolution(out)
+    steps(out)
     stability(out)
 
 
