@@ -8,7 +8,8 @@
 #     pages) with the sun turning, so that every frame refines;
 #  3. stability where it fails: a camera cut (frames to converge after it), a fast pan (refinement
 #     lagging), a moving light (everything invalidated every frame) and a pool too small for the
-#     view (unserved pages), each with iterations 1 and 4, readback and gpu.
+#     view (unserved pages), each with iterations 1 and 4, readback and gpu; and the pan with a
+#     clipmap of levels around the camera.
 #   eval/experiments/asm.sh [OUT_DIR] [WxH] [FRAMES]
 # PARTS="1 3" runs only those parts (default: all). Writes OUT_DIR/<experiment>.json, the camera
 # paths it flies (OUT_DIR/paths/*.json) and prints the tables (asm_tables.py).
@@ -96,5 +97,8 @@ if part 3; then
   done
   bench small-pool --scene default --path "$OUT/paths/pan.json" --param pool_pages=6,16 \
     --technique "asm:resident_levels=3:mark=visible:page_size=64,asm:allocation=gpu:resident_levels=3:mark=visible:page_size=64"
+  # A clipmap of levels around the camera: 4 or 8 pages per level against none, on the pan.
+  bench clipmap --scene default --path "$OUT/paths/pan.json" --param clipmap=0,4,8 \
+    --technique "asm:mark=visible:page_size=64,asm:allocation=gpu:mark=visible:page_size=64"
 fi
 /usr/bin/python3 "$ROOT/eval/experiments/asm_tables.py" "$OUT"

@@ -124,13 +124,14 @@ def steps(out):
 
 def stability(out):
     for name, what in (("cut", "camera cut A -> B halfway"), ("pan", "fast pan, 90 degrees over the path"),
-                       ("sun", "sun turning 20 degrees over the path"), ("small-pool", "fast pan, mark=visible, 64-texel pages: a pool of 6^2 or 16^2 pages, 3 resident levels")):
+                       ("sun", "sun turning 20 degrees over the path"), ("small-pool", "fast pan, mark=visible, 64-texel pages: a pool of 6^2 or 16^2 pages, 3 resident levels"),
+                       ("clipmap", "fast pan, mark=visible, 64-texel pages, clipmap of 0 (off), 4 or 8 pages per level")):
         rs = runs(out, name)
         if not rs:
             continue
         frames = rs[0]["frames"]
         print(f"\n**{what.capitalize()}** ({rs[0]['size'][0]}x{rs[0]['size'][1]}, {frames} frames)\n")
-        header(["mode", "iterations", "pool", "pages rendered per frame", "unserved", "frames to converge after the cut" if name == "cut" else "frames converged",
+        header(["mode", "iterations", "pool", "clipmap", "pages rendered per frame", "unserved", "frames to converge after the cut" if name == "cut" else "frames converged",
                 "misclassified % mean / max", "total ms vk / gl", "GL same"])
         for (lab, _), b in pair(rs).items():
             v = b["vulkan"]
@@ -143,7 +144,7 @@ def stability(out):
             else:
                 conv = f"{sum(1 for n in per if n == 0)} of {frames}"
             mis = v["series"]["misclassified_pct"]
-            row([p["allocation"], p["iterations"], f"{p['pool_pages']}^2", " ".join(map(str, per)), m["asm_refinement"]["unserved_total"], conv,
+            row([p["allocation"], p["iterations"], f"{p['pool_pages']}^2", p.get("clipmap", "0"), " ".join(map(str, per)), m["asm_refinement"]["unserved_total"], conv,
                  f"{sum(mis) / len(mis):.3f} / {max(mis):.3f}", " / ".join(fmt(ms(b[k], "total")) if k in b else "-" for k in BACKENDS),
                  same_on_gl(b)])
 

@@ -31,7 +31,7 @@ ViewOut VSView(float3 pos : POSITION) {
 
 float4 PSView(ViewOut i) : SV_Target {
   float3 c = AsmShadowCoord(i.worldPos);
-  uint level = AsmNeededLevel(c.xy);
+  uint level = AsmClipLevel(c.xy, AsmNeededLevel(c.xy));
   if (AsmOutsideMap(c)) return float4(-1, -1, 1, -1);
   // The shadow term as the lit pass computes it (ShadowVisibility's start level).
   return float4(c.xy, AsmVisibility(c, max(level, uint(asmFinestPinned))), float(level));

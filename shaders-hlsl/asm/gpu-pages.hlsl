@@ -20,7 +20,8 @@ cbuffer AsmShadow : register(b2) {  // as asm/shadow.hlsli
   float asmPoolPages;
   float asmPoolSize;
   float asmFinestPinned;
-  float3 asmPad;
+  float asmClipPages;
+  float2 asmCameraUV;
 };
 
 ByteAddressBuffer NewPages : register(t2);

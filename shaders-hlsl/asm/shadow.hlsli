@@ -21,7 +21,8 @@ cbuffer AsmShadow : register(b2) {
   float asmPoolPages;         // pages per pool side
   float asmPoolSize;          // texels per pool side
   float asmFinestPinned;      // resident_levels - 1: always resident, so a walk never starts coarser
-  float3 asmPad;
+  float asmClipPages;         // clipmap: pages per side of each level's window around the camera (0: off)
+  float2 asmCameraUV;         // the camera's position in map coordinates (the windows' centre)
 };
 
 Texture2D<float> AsmPool : register(t0);
@@ -53,6 +54,20 @@ uint AsmNeededLevel(float2 uv) {
   float footprint = max(length(dx), length(dy)) * asmPageSize;  // level-0 texels per pixel
   float need = footprint > 0.0 ? ceil(log2(1.0 / footprint)) : asmMaxLevel;
   return uint(clamp(need, 0.0, asmMaxLevel));
+}
+
+// clipmap=W: the finest level at or below `level` whose window (the W x W pages around the
+// camera's page at that level) holds uv. Level L's window spans W / 2^L of the map, so each level
+// is refined only near the camera, as the levels of a clipmap; coarser levels cover the rest.
+uint AsmClipLevel(float2 uv, uint level) {
+  if (asmClipPages <= 0.0) return level;
+  [loop] while (level > 0) {
+    float n = float(1u << level);
+    float2 d = floor(saturate(uv) * n) - floor(saturate(asmCameraUV) * n);
+    if (all(d >= -0.5 * asmClipPages) && all(d < 0.5 * asmClipPages)) break;
+    --level;
+  }
+  return level;
 }
 
 // The finest resident page covering uv at level `start` or coarser. Level 0 is always resident,
@@ -123,7 +138,7 @@ static uint gAsmStartLevel = 0;
 
 float ShadowVisibility(float3 worldPos, float3 worldNormal, float4 svPosition) {
   float3 c = AsmShadowCoord(worldPos);
-  gAsmStartLevel = max(AsmNeededLevel(c.xy), uint(asmFinestPinned));
+  gAsmStartLevel = max(AsmClipLevel(c.xy, AsmNeededLevel(c.xy)), uint(asmFinestPinned));
   if (AsmOutsideMap(c)) return 1.0;
   return AsmVisibility(c, gAsmStartLevel);
 }

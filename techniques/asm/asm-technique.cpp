@@ -60,6 +60,7 @@ class AsmTechnique final : public Technique, public AsmCounterSource {
         {ParamSpec::Choice, "allocation", "readback: the paper's refinement (requests read back, pages allocated and drawn by the CPU); gpu: allocation, page tables and page drawing on the GPU, nothing read back", "readback", 0, 0, {"readback", "gpu"}},
         {ParamSpec::Choice, "mark", "which pixels request pages: edges (Sobel boundaries of the shadow, the paper) or visible (every visible sample and its filter footprint, as virtual shadow maps)", "edges", 0, 0, {"edges", "visible"}},
         {ParamSpec::Choice, "compaction", "how the analysis' requests become a dense stream: append (an AppendStructuredBuffer's counter) or prefix (the paper's stream compaction: a prefix sum over four request slots per pixel, order-preserving)", "append", 0, 0, {"append", "prefix"}},
+        {ParamSpec::Int, "clipmap", "0: any level may be refined anywhere; W > 0: level L is refined only within the W x W pages around the camera's page (a clipmap of levels, as virtual shadow maps for a directional light), coarser levels serving the rest", "0", 0, 4096, {}},
         {ParamSpec::Int, "gpu_batch", "allocation=gpu: pages allocated and drawn per iteration at most (slices of the scratch depth array); the rest wait for the next iteration", "64", 1, 2048, {}},
         {ParamSpec::Float, "edge_threshold", "Sobel gradient magnitude of the shadow term above which a pixel is a shadow boundary", "0.1", 0.0, 8.0, {}},
         {ParamSpec::Int, "depth_bias", "D3D11 DepthBias (units of the depth format)", "200", -1e7, 1e7, {}},
@@ -99,6 +100,8 @@ class AsmTechnique final : public Technique, public AsmCounterSource {
     gpuAllocation_ = p.getChoice("allocation") == "gpu";
     markVisible_ = p.getChoice("mark") == "visible";
     prefixCompaction_ = p.getChoice("compaction") == "prefix";
+    clipPages_ = uint32_t(p.getInt("clipmap"));
+    if (clipPages_ == 1) throw std::invalid_argument("clipmap: 1 page per level cannot hold a footprint; 0 (off) or at least 2");
     if (gpuAllocation_ && !device.Info().vsRenderTargetArrayIndex)
       throw std::invalid_argument(std::string("allocation: gpu draws each new page into its own slice with SV_RenderTargetArrayIndex from the vertex shader, which this ") +
                                   BackendName(device.GetBackend()) + " device lacks (DeviceInfo::vsRenderTargetArrayIndex)");
@@ -176,7 +179,10 @@ class AsmTechnique final : public Technique, public AsmCounterSource {
   void RenderShadows(DeviceContext& ctx, SceneDrawer& drawer, const FrameInputs& frame) override {
     GpuTimer::Scope timed(frame.timer, ctx, "shadow");
     lightViewProj_ = FitOrthoToBounds(frame.scene->bounds, frame.light.direction).viewProj;  // level 0's page
-    Constants c{lightViewProj_, float(pageSize_), float(maxLevel_), float(poolPages_), float(poolPages_ * pageSize_), float(residentLevels_ - 1), {}};
+    glm::vec4 eye = lightViewProj_ * glm::vec4(frame.camera.position, 1.0f);
+    glm::vec2 cameraUV(eye.x / eye.w * 0.5f + 0.5f, 0.5f - eye.y / eye.w * 0.5f);
+    Constants c{lightViewProj_, float(pageSize_), float(maxLevel_), float(poolPages_), float(poolPages_ * pageSize_), float(residentLevels_ - 1),
+                float(clipPages_), cameraUV};
     ctx.UpdateSubresource(constants_.get(), 0, nullptr, &c, 0, 0);
     EnsureViewTargets(frame.width, frame.height);
     counters_ = {};
@@ -294,7 +300,8 @@ class AsmTechnique final : public Technique, public AsmCounterSource {
   struct Constants {
     glm::mat4 lightViewProj;
     float pageSize, maxLevel, poolPages, poolSize;
-    float finestPinned, pad[3];
+    float finestPinned, clipPages;
+    glm::vec2 cameraUV;
   };
   static_assert(sizeof(Constants) == 96);
   // cbuffer AsmAnalysis in shaders-hlsl/asm/analysis.hlsl.
@@ -373,6 +380,22 @@ class AsmTechnique final : public Technique, public AsmCounterSource {
     }
   }
 
+  // Whether an instance's world box may reach the page's square (its corners not all beyond one of
+  // the four side planes). Depth is not tested: casters in front of the near plane still cast
+  // (depth clip is off). allocation=gpu draws every instance into every page (its pages are known
+  // only to the GPU); the depth written is the same.
+  static bool MayCoverPage(const scene::Bounds& b, const glm::mat4& viewProj) {
+    int left = 0, right = 0, below = 0, above = 0;
+    for (int i = 0; i < 8; ++i) {
+      glm::vec4 c = viewProj * glm::vec4(i & 1 ? b.max.x : b.min.x, i & 2 ? b.max.y : b.min.y, i & 4 ? b.max.z : b.min.z, 1.0f);
+      left += c.x < -c.w;
+      right += c.x > c.w;
+      below += c.y < -c.w;
+      above += c.y > c.w;
+    }
+    return left < 8 && right < 8 && below < 8 && above < 8;
+  }
+
   // The light's projection cropped to a virtual page: its uv square becomes NDC [-1, 1].
   glm::mat4 PageViewProj(const PageKey& k) const {
     float n = float(1u << k.level);
@@ -410,7 +433,9 @@ class AsmTechnique final : public Technique, public AsmCounterSource {
       ctx.Draw(3, 0);
       ctx.RSSetState(pageRasterizer_.get());
       ctx.OMSetDepthStencilState(nullptr, 0);
-      trianglesSubmitted_ += drawer.DrawDepth(ctx, PageViewProj(k));
+      glm::mat4 viewProj = PageViewProj(k);
+      const std::vector<scene::Instance>& instances = drawer.gpu().scene().instances;
+      trianglesSubmitted_ += drawer.DrawDepth(ctx, viewProj, [&](uint32_t i) { return MayCoverPage(instances[i].worldBounds, viewProj); });
       ++counters_.pagesRendered;
     }
     ctx.OMSetRenderTargets(0, nullptr, nullptr);
@@ -593,6 +618,7 @@ class AsmTechnique final : public Technique, public AsmCounterSource {
   Ref<UnorderedAccessView> requestedUav_, requestsUav_;
   Ref<ShaderResourceView> requestsSrv_;
   bool prefixCompaction_ = false;
+  uint32_t clipPages_ = 0;
   Ref<Buffer> pixelRequests_, blockSums_, prefixCount_, compactionConstants_;
   Ref<UnorderedAccessView> pixelRequestsUav_, blockSumsUav_, prefixCountUav_, requestsPlainUav_;
   Ref<ShaderResourceView> pixelRequestsSrv_;

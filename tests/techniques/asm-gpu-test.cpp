@@ -3,6 +3,7 @@
 // each mode wrote) and the same picture, for either marking; a small gpu_batch defers pages to
 // later iterations without losing any; pages stay cached across frames and a light change
 // invalidates them; under a full pool both backends evict the same pages in both modes.
+#include <cmath>
 #include <cstdio>
 #include <glm/ext/matrix_transform.hpp>
 
@@ -13,6 +14,7 @@
 #include "technique-renderer.h"
 #include <sp/tech/asm-counters.h>
 #include <sp/tech/renderer.h>
+#include "scene-fit.h"
 
 namespace sp::test {
 namespace {
@@ -118,6 +120,52 @@ TEST_P(AsmGpuAllocationTest, PrefixSumCompactionRequestsWhatTheAppendBufferDoes)
       std::printf("asm %s %s: prefix compaction %u requests, %zu pages (append %u, %zu)\n", allocation, mark, prefix.first.requests,
                   prefix.pages.size(), append.first.requests, append.pages.size());
     }
+}
+
+// clipmap=4: level L is refined only within the 4 x 4 pages around the camera's page at that level
+// (one more page around it for the filter footprint's neighbours with mark=visible), so far
+// receivers use coarser pages than they ask for; the pages stay correct (the floating box's
+// shadow), and both modes still agree.
+TEST_P(AsmGpuAllocationTest, ClipmapRefinesEachLevelOnlyAroundTheCamera) {
+  const uint32_t W = 160, H = 96;
+  scene::Scene s = ObliqueBox();
+  glm::mat4 fit = tech::FitOrthoToBounds(s.bounds, s.light.direction).viewProj;
+  glm::vec4 eye = fit * glm::vec4(s.camera.position, 1.0f);
+  glm::vec2 cameraUV(eye.x / eye.w * 0.5f + 0.5f, 0.5f - eye.y / eye.w * 0.5f);
+  TechniqueParams p = kSmallPages;
+  p["mark"] = "visible";
+  Converged full = RenderUntilConverged(device(), s, p, W, H);
+  p["clipmap"] = "4";
+  Converged readback = RenderUntilConverged(device(), s, p, W, H);
+  p["allocation"] = "gpu";
+  Converged gpu = RenderUntilConverged(device(), s, p, W, H);
+  EXPECT_EQ(gpu.pages, readback.pages);
+  EXPECT_EQ(DifferentPixels(gpu.image, readback.image), 0);
+  int outside = 0, fine = 0;
+  for (uint32_t k : gpu.pages) {
+    uint32_t level = k >> 28, x = k & 0x3fffu, y = (k >> 14) & 0x3fffu;
+    if (level < 2) continue;  // the resident levels
+    ++fine;
+    int n = 1 << level, cx = int(std::floor(cameraUV.x * n)), cy = int(std::floor(cameraUV.y * n));
+    int dx = int(x) - cx, dy = int(y) - cy;
+    outside += dx < -2 - 1 || dx > 1 + 1 || dy < -2 - 1 || dy > 1 + 1;
+  }
+  EXPECT_GT(fine, 5);
+  EXPECT_EQ(outside, 0) << "pages beyond their level's window (plus the footprint's margin)";
+  EXPECT_LT(gpu.pages.size(), full.pages.size()) << "the windows must leave out some of the pages the view asks for";
+  std::printf("asm clipmap 4: %zu resident pages (%d refined, %d outside the windows), without: %zu\n", gpu.pages.size(), fine, outside,
+              full.pages.size());
+  // Correct, coarser shadows: the floating box seen from above, clipped.
+  scene::Scene top = FloatingBox(false);
+  TechniqueParams q = {{"effective_resolution", "8192"}, {"page_size", "64"}, {"pool_pages", "16"}, {"resident_levels", "2"}, {"clipmap", "2"}};
+  for (const char* allocation : {"readback", "gpu"}) {
+    q["allocation"] = allocation;
+    auto r = MakeTechniqueRenderer(device(), "asm", top, 128, 128, q);
+    r->RenderFrame(top.camera, top.light);
+    Comparison c = CompareWithAnalytic(r->ReadColor(), AnalyticFloor(top, 128, 128), 128, 128, 3);
+    EXPECT_GT(c.shadow, 200) << allocation;
+    EXPECT_EQ(c.wrong, 0) << allocation;
+  }
 }
 
 // gpu_batch 3: at most three pages drawn per iteration, the rest asked for again by the next
