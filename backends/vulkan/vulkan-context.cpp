@@ -139,7 +139,9 @@ void VulkanContext::SetDynamicState(const PipelineState& s) {
 }
 
 void VulkanContext::BindVertexBuffers(const PipelineState& s) {
-  decltype(boundVertex_) want;
+  // Built in a reused member: this runs for every draw, and a fresh vector was an allocation each.
+  decltype(boundVertex_)& want = wantVertex_;
+  want.clear();
   if (s.inputLayout && UsesVertexInputs(s)) {
     uint32_t slots = 0;
     for (const VertexAttribute& a : s.inputLayout->Attributes()) slots |= 1u << a.slot;
@@ -154,19 +156,21 @@ void VulkanContext::BindVertexBuffers(const PipelineState& s) {
   if (want == boundVertex_) return;
   for (size_t i = 0; i < want.size();) {
     size_t j = i;
-    std::vector<VkBuffer> bufs;
-    std::vector<VkDeviceSize> offs, sizes, strides;
+    VkBuffer bufs[IA_VERTEX_INPUT_RESOURCE_SLOT_COUNT];
+    VkDeviceSize offs[IA_VERTEX_INPUT_RESOURCE_SLOT_COUNT], sizes[IA_VERTEX_INPUT_RESOURCE_SLOT_COUNT], strides[IA_VERTEX_INPUT_RESOURCE_SLOT_COUNT];
+    uint32_t n = 0;
     while (j < want.size() && std::get<0>(want[j]) == std::get<0>(want[i]) + (j - i)) {
-      bufs.push_back(std::get<1>(want[j]));
-      offs.push_back(std::get<2>(want[j]));
-      sizes.push_back(std::get<3>(want[j]));
-      strides.push_back(std::get<4>(want[j]));
+      bufs[n] = std::get<1>(want[j]);
+      offs[n] = std::get<2>(want[j]);
+      sizes[n] = std::get<3>(want[j]);
+      strides[n] = std::get<4>(want[j]);
+      ++n;
       ++j;
     }
-    vkCmdBindVertexBuffers2(cur_->cmd, std::get<0>(want[i]), uint32_t(bufs.size()), bufs.data(), offs.data(), sizes.data(), strides.data());
+    vkCmdBindVertexBuffers2(cur_->cmd, std::get<0>(want[i]), n, bufs, offs, sizes, strides);
     i = j;
   }
-  boundVertex_ = std::move(want);
+  std::swap(boundVertex_, want);
 }
 
 VkPipeline VulkanContext::CachedGraphicsPipeline(const PipelineState& s, uint64_t vsUid, uint64_t psUid, VkPipelineLayout layout, const char* call) {

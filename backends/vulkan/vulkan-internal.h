@@ -614,7 +614,7 @@ class VulkanContext final : public detail::ContextBackend {
     VkBool32 strip = VK_FALSE;
   };
   DynamicValues lastDynamic_;
-  std::vector<std::tuple<uint32_t, VkBuffer, VkDeviceSize, VkDeviceSize, VkDeviceSize>> boundVertex_;
+  std::vector<std::tuple<uint32_t, VkBuffer, VkDeviceSize, VkDeviceSize, VkDeviceSize>> boundVertex_, wantVertex_;
   std::tuple<VkBuffer, VkDeviceSize, VkIndexType> boundIndex_{};
   VkPipeline currentPipeline_ = VK_NULL_HANDLE;
   VkPipelineLayout currentLayout_ = VK_NULL_HANDLE;

@@ -37,15 +37,22 @@ ViewRange WholeBuffer(const Buffer* b) {
   return r;
 }
 
-// Calls fn(view, description) for every output binding.
+// An output binding, named only when a message needs it (the hazard checks run on every bind).
+struct OutputSlot {
+  const char* what = nullptr;
+  int index = -1;
+  std::string name() const { return index < 0 ? std::string(what) : what + std::to_string(index); }
+};
+
+// Calls fn(view, slot) for every output binding.
 template <class Fn>
 void ForEachOutput(const PipelineState& s, Fn fn) {
   for (uint32_t i = 0; i < SIMULTANEOUS_RENDER_TARGET_COUNT; ++i)
-    if (s.renderTargets[i]) fn(s.renderTargets[i].get(), "render target " + std::to_string(i));
-  if (s.depthStencil) fn(s.depthStencil.get(), std::string("depth-stencil target"));
+    if (s.renderTargets[i]) fn(s.renderTargets[i].get(), OutputSlot{"render target ", int(i)});
+  if (s.depthStencil) fn(s.depthStencil.get(), OutputSlot{"depth-stencil target", -1});
   for (uint32_t i = 0; i < PS_CS_UAV_REGISTER_COUNT; ++i) {
-    if (s.pixelUavs[i]) fn(s.pixelUavs[i].get(), "pixel shader UAV u" + std::to_string(i));
-    if (s.computeUavs[i]) fn(s.computeUavs[i].get(), "compute shader UAV u" + std::to_string(i));
+    if (s.pixelUavs[i]) fn(s.pixelUavs[i].get(), OutputSlot{"pixel shader UAV u", int(i)});
+    if (s.computeUavs[i]) fn(s.computeUavs[i].get(), OutputSlot{"compute shader UAV u", int(i)});
   }
 }
 
@@ -59,26 +66,26 @@ bool detail::ContextHazards::ViewWritesOverlap(const View* a, const View* b) {
 
 ShaderResourceView* detail::ContextHazards::FilterInput(DeviceContext& ctx, ShaderResourceView* srv, const char* call, ShaderStage stage, uint32_t slot) {
   if (!srv) return nullptr;
-  std::string conflict;
-  ForEachOutput((*ctx.state_), [&](const View* out, const std::string& what) {
-    if (conflict.empty() && Overlaps(out, srv->GetResource(), srv->Range())) conflict = what;
+  OutputSlot conflict;
+  ForEachOutput((*ctx.state_), [&](const View* out, OutputSlot where) {
+    if (!conflict.what && Overlaps(out, srv->GetResource(), srv->Range())) conflict = where;
   });
-  if (conflict.empty()) return srv;
+  if (!conflict.what) return srv;
   ctx.device_->Message(MessageSeverity::Warning,
-                       std::string(call) + ": " + Describe(srv->GetResource()) + " is bound as " + conflict +
+                       std::string(call) + ": " + Describe(srv->GetResource()) + " is bound as " + conflict.name() +
                            "; as in D3D11, NULL is bound to " + SlotName(stage, 't', slot) + " instead");
   return nullptr;
 }
 
 Buffer* detail::ContextHazards::FilterInputBuffer(DeviceContext& ctx, Buffer* buffer, const char* call, const char* what, uint32_t slot) {
   if (!buffer) return nullptr;
-  std::string conflict;
+  OutputSlot conflict;
   ViewRange whole = WholeBuffer(buffer);
-  ForEachOutput((*ctx.state_), [&](const View* out, const std::string& desc) {
-    if (conflict.empty() && Overlaps(out, buffer, whole)) conflict = desc;
+  ForEachOutput((*ctx.state_), [&](const View* out, OutputSlot where) {
+    if (!conflict.what && Overlaps(out, buffer, whole)) conflict = where;
   });
-  if (conflict.empty()) return buffer;
-  ctx.device_->Message(MessageSeverity::Warning, std::string(call) + ": " + Describe(buffer) + " is bound as " + conflict +
+  if (!conflict.what) return buffer;
+  ctx.device_->Message(MessageSeverity::Warning, std::string(call) + ": " + Describe(buffer) + " is bound as " + conflict.name() +
                                                      "; as in D3D11, NULL is bound to " + what + " " + std::to_string(slot) + " instead");
   return nullptr;
 }
@@ -92,7 +99,7 @@ void detail::ContextHazards::UnbindForOutput(DeviceContext& ctx, const View* out
   const Resource* res = output->GetResource();
   for (uint32_t st = 0; st < SHADER_STAGE_COUNT; ++st) {
     StageBindings& b = s.stages[st];
-    for (uint32_t i = 0; i < COMMONSHADER_INPUT_RESOURCE_SLOT_COUNT; ++i) {
+    for (uint32_t i = 0; i < b.shaderResourceEnd; ++i) {
       if (b.shaderResources[i] && Overlaps(output, b.shaderResources[i]->GetResource(), b.shaderResources[i]->Range())) {
         b.shaderResources[i].reset();
         ctx.dirty_ |= DIRTY_BINDINGS_VS << st;

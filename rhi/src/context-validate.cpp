@@ -54,9 +54,10 @@ struct Checker {
   }
 
   void checkSrv(const Shader* sh, ShaderStage stage, const ShaderResourceBinding& r, const ShaderResourceView* v) const {
-    std::string slot = SlotName(stage, 't', r.registerIndex) + " ('" + r.name + "')";
+    // Built only for a message: this runs for every binding of every draw.
+    auto slot = [&] { return SlotName(stage, 't', r.registerIndex) + " ('" + r.name + "')"; };
     if (!v) return missing(sh, stage, RegisterClass::ShaderResource, r.registerIndex, &r, nullptr,
-                           "the shader reads " + slot + " but no shader resource view is bound there");
+                           "the shader reads " + slot() + " but no shader resource view is bound there");
     const SHADER_RESOURCE_VIEW_DESC& d = v->GetDesc();
     const Buffer* buf = AsBuffer(v->GetResource());
     bool structured = buf && (buf->GetDesc().MiscFlags & RESOURCE_MISC_BUFFER_STRUCTURED);
@@ -64,26 +65,26 @@ struct Checker {
     switch (r.type) {
       case ShaderResourceType::Texture:
         if (d.ViewDimension != r.dimension)
-          fail(ErrorId::RESOURCE_TYPE_MISMATCH, sh, slot + " is declared " + SrvDimensionName(r.dimension) + " but " + Describe(v) + " is a " + SrvDimensionName(d.ViewDimension) + " view");
+          fail(ErrorId::RESOURCE_TYPE_MISMATCH, sh, slot() + " is declared " + SrvDimensionName(r.dimension) + " but " + Describe(v) + " is a " + SrvDimensionName(d.ViewDimension) + " view");
         if (!FormatReturns(d.Format, r.returnType))
-          fail(ErrorId::RESOURCE_TYPE_MISMATCH, sh, slot + " returns " + ComponentName(r.returnType) + " but the view's format is " + std::string(FormatName(d.Format)));
+          fail(ErrorId::RESOURCE_TYPE_MISMATCH, sh, slot() + " returns " + ComponentName(r.returnType) + " but the view's format is " + std::string(FormatName(d.Format)));
         break;
       case ShaderResourceType::TypedBuffer:
-        if (!buf || structured || raw) fail(ErrorId::RESOURCE_TYPE_MISMATCH, sh, slot + " is a typed Buffer<> but " + Describe(v) + " is not a typed buffer view");
+        if (!buf || structured || raw) fail(ErrorId::RESOURCE_TYPE_MISMATCH, sh, slot() + " is a typed Buffer<> but " + Describe(v) + " is not a typed buffer view");
         if (!FormatReturns(d.Format, r.returnType))
-          fail(ErrorId::RESOURCE_TYPE_MISMATCH, sh, slot + " returns " + ComponentName(r.returnType) + " but the view's format is " + std::string(FormatName(d.Format)));
+          fail(ErrorId::RESOURCE_TYPE_MISMATCH, sh, slot() + " returns " + ComponentName(r.returnType) + " but the view's format is " + std::string(FormatName(d.Format)));
         break;
       case ShaderResourceType::StructuredBuffer:
         // glslang compiles ByteAddressBuffer exactly like StructuredBuffer<uint> (a runtime array
         // of 4-byte elements), so reflection cannot tell them apart: accept a raw view there.
         if (raw && r.structureStride == 4) break;
-        if (!structured) fail(ErrorId::RESOURCE_TYPE_MISMATCH, sh, slot + " is a StructuredBuffer but " + Describe(v) + " is not a view of a structured buffer");
+        if (!structured) fail(ErrorId::RESOURCE_TYPE_MISMATCH, sh, slot() + " is a StructuredBuffer but " + Describe(v) + " is not a view of a structured buffer");
         if (r.structureStride && buf->GetDesc().StructureByteStride != r.structureStride)
-          fail(ErrorId::RESOURCE_TYPE_MISMATCH, sh, slot + " has a stride of " + std::to_string(r.structureStride) + " bytes but the buffer's StructureByteStride is " +
+          fail(ErrorId::RESOURCE_TYPE_MISMATCH, sh, slot() + " has a stride of " + std::to_string(r.structureStride) + " bytes but the buffer's StructureByteStride is " +
                                                         std::to_string(buf->GetDesc().StructureByteStride));
         break;
       case ShaderResourceType::ByteAddressBuffer:
-        if (!raw) fail(ErrorId::RESOURCE_TYPE_MISMATCH, sh, slot + " is a ByteAddressBuffer but " + Describe(v) + " is not a raw view (BUFFEREX_SRV_FLAG_RAW)");
+        if (!raw) fail(ErrorId::RESOURCE_TYPE_MISMATCH, sh, slot() + " is a ByteAddressBuffer but " + Describe(v) + " is not a raw view (BUFFEREX_SRV_FLAG_RAW)");
         break;
       default:
         break;
@@ -91,10 +92,11 @@ struct Checker {
   }
 
   void checkUav(const Shader* sh, ShaderStage stage, const ShaderResourceBinding& r, const UnorderedAccessView* v) const {
-    std::string slot = SlotName(stage, 'u', r.registerIndex) + " ('" + r.name + "')";
+    // Built only for a message: this runs for every binding of every draw.
+    auto slot = [&] { return SlotName(stage, 'u', r.registerIndex) + " ('" + r.name + "')"; };
     if (!v)
       return missing(sh, stage, RegisterClass::UnorderedAccess, r.registerIndex, &r, nullptr,
-                     "the shader writes " + slot + " but no unordered access view is bound there (" +
+                     "the shader writes " + slot() + " but no unordered access view is bound there (" +
                          (stage == ShaderStage::Compute ? "CSSetUnorderedAccessViews" : "OMSetRenderTargetsAndUnorderedAccessViews") + ")");
     const UNORDERED_ACCESS_VIEW_DESC& d = v->GetDesc();
     const Buffer* buf = AsBuffer(v->GetResource());
@@ -103,21 +105,21 @@ struct Checker {
     switch (r.type) {
       case ShaderResourceType::RWTexture:
         if (buf || uint32_t(d.ViewDimension) != uint32_t(r.dimension))
-          fail(ErrorId::RESOURCE_TYPE_MISMATCH, sh, slot + " is declared RW" + SrvDimensionName(r.dimension) + " but " + Describe(v) + " does not match");
+          fail(ErrorId::RESOURCE_TYPE_MISMATCH, sh, slot() + " is declared RW" + SrvDimensionName(r.dimension) + " but " + Describe(v) + " does not match");
         if (!FormatReturns(d.Format, r.returnType))
-          fail(ErrorId::RESOURCE_TYPE_MISMATCH, sh, slot + " holds " + ComponentName(r.returnType) + " but the view's format is " + std::string(FormatName(d.Format)));
+          fail(ErrorId::RESOURCE_TYPE_MISMATCH, sh, slot() + " holds " + ComponentName(r.returnType) + " but the view's format is " + std::string(FormatName(d.Format)));
         break;
       case ShaderResourceType::RWTypedBuffer:
-        if (!buf || structured || raw) fail(ErrorId::RESOURCE_TYPE_MISMATCH, sh, slot + " is an RWBuffer<> but " + Describe(v) + " is not a typed buffer view");
+        if (!buf || structured || raw) fail(ErrorId::RESOURCE_TYPE_MISMATCH, sh, slot() + " is an RWBuffer<> but " + Describe(v) + " is not a typed buffer view");
         break;
       case ShaderResourceType::RWStructuredBuffer:
         if (raw && r.structureStride == 4 && !r.appendConsume) break;  // RWByteAddressBuffer, as above
-        if (!structured) fail(ErrorId::RESOURCE_TYPE_MISMATCH, sh, slot + " is a structured UAV but " + Describe(v) + " is not a view of a structured buffer");
+        if (!structured) fail(ErrorId::RESOURCE_TYPE_MISMATCH, sh, slot() + " is a structured UAV but " + Describe(v) + " is not a view of a structured buffer");
         if (r.appendConsume && !(d.Buffer.Flags & (BUFFER_UAV_FLAG_APPEND | BUFFER_UAV_FLAG_COUNTER)))
-          fail(ErrorId::RESOURCE_TYPE_MISMATCH, sh, slot + " uses Append/Consume/IncrementCounter but the view was created without BUFFER_UAV_FLAG_APPEND or _COUNTER");
+          fail(ErrorId::RESOURCE_TYPE_MISMATCH, sh, slot() + " uses Append/Consume/IncrementCounter but the view was created without BUFFER_UAV_FLAG_APPEND or _COUNTER");
         break;
       case ShaderResourceType::RWByteAddressBuffer:
-        if (!raw) fail(ErrorId::RESOURCE_TYPE_MISMATCH, sh, slot + " is an RWByteAddressBuffer but " + Describe(v) + " is not a raw view (BUFFER_UAV_FLAG_RAW)");
+        if (!raw) fail(ErrorId::RESOURCE_TYPE_MISMATCH, sh, slot() + " is an RWByteAddressBuffer but " + Describe(v) + " is not a raw view (BUFFER_UAV_FLAG_RAW)");
         break;
       default:
         break;
@@ -149,30 +151,32 @@ struct Checker {
           break;
         case RegisterClass::Sampler: {
           const SamplerState* smp = b.samplers[r.registerIndex].get();
-          std::string slot = SlotName(stage, 's', r.registerIndex) + " ('" + r.name + "')";
+          // Built only for a message: this runs for every binding of every draw.
+          auto slot = [&] { return SlotName(stage, 's', r.registerIndex) + " ('" + r.name + "')"; };
           if (!smp) {
-            missing(sh, stage, RegisterClass::Sampler, r.registerIndex, &r, nullptr, "the shader samples with " + slot + " but no sampler state is bound there");
+            missing(sh, stage, RegisterClass::Sampler, r.registerIndex, &r, nullptr, "the shader samples with " + slot() + " but no sampler state is bound there");
             break;
           }
           bool cmp = FilterIsComparison(smp->GetDesc().Filter);
           if (r.type == ShaderResourceType::ComparisonSampler && !cmp)
-            fail(ErrorId::RESOURCE_TYPE_MISMATCH, sh, slot + " is a SamplerComparisonState but " + Describe(smp) + " has no comparison filter");
+            fail(ErrorId::RESOURCE_TYPE_MISMATCH, sh, slot() + " is a SamplerComparisonState but " + Describe(smp) + " has no comparison filter");
           if (r.type == ShaderResourceType::Sampler && cmp)
-            fail(ErrorId::RESOURCE_TYPE_MISMATCH, sh, slot + " is a SamplerState but " + Describe(smp) + " has a comparison filter");
+            fail(ErrorId::RESOURCE_TYPE_MISMATCH, sh, slot() + " is a SamplerState but " + Describe(smp) + " has a comparison filter");
           break;
         }
         case RegisterClass::UnorderedAccess:
           if (r.type == ShaderResourceType::UavCounter && (stage == ShaderStage::Pixel || stage == ShaderStage::Compute)) {
             // A UAV used only through IncrementCounter/DecrementCounter appears as its counter alone.
             const UnorderedAccessView* v = (stage == ShaderStage::Pixel ? s.pixelUavs : s.computeUavs)[r.registerIndex].get();
-            std::string slot = SlotName(stage, 'u', r.registerIndex) + " ('" + r.name + "')";
+            // Built only for a message: this runs for every binding of every draw.
+            auto slot = [&] { return SlotName(stage, 'u', r.registerIndex) + " ('" + r.name + "')"; };
             if (!v) {
               missing(sh, stage, RegisterClass::UnorderedAccess, r.registerIndex, &r, nullptr,
-                      "the shader uses the counter of " + slot + " but no unordered access view is bound there");
+                      "the shader uses the counter of " + slot() + " but no unordered access view is bound there");
               break;
             }
             if (!AsBuffer(v->GetResource()) || !(v->GetDesc().Buffer.Flags & (BUFFER_UAV_FLAG_APPEND | BUFFER_UAV_FLAG_COUNTER)))
-              fail(ErrorId::RESOURCE_TYPE_MISMATCH, sh, slot + " uses the hidden counter but " + Describe(v) + " was created without BUFFER_UAV_FLAG_APPEND or _COUNTER");
+              fail(ErrorId::RESOURCE_TYPE_MISMATCH, sh, slot() + " uses the hidden counter but " + Describe(v) + " was created without BUFFER_UAV_FLAG_APPEND or _COUNTER");
             break;
           }
           if (stage == ShaderStage::Pixel) checkUav(sh, stage, r, s.pixelUavs[r.registerIndex].get());

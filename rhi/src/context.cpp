@@ -157,6 +157,8 @@ void DeviceContext::SetShaderResources(ShaderStage stage, uint32_t start, uint32
     ShaderResourceView* v = detail::ContextHazards::FilterInput(*this, views[i], call, stage, start + i);
     state_->stage(stage).shaderResources[start + i] = RefOf(v);
   }
+  uint32_t& end = state_->stage(stage).shaderResourceEnd;
+  end = std::max(end, start + num);
   dirty_ |= DIRTY_BINDINGS_VS << uint32_t(stage);
 }
 

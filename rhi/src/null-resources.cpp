@@ -1,6 +1,8 @@
 // Zero-filled stand-ins for unbound registers, and their binding around one draw or dispatch.
 #include "null-resources.h"
 
+#include <algorithm>
+
 #include <vector>
 
 #include "context-internal.h"
@@ -330,6 +332,7 @@ NullBindings::NullBindings(DeviceContext& ctx, const std::vector<UnboundRead>& u
         break;
       case RegisterClass::ShaderResource:
         sb.shaderResources[reg] = RefOf(nulls.ShaderResource(*u.binding, TextureIsCompared(u.shader->Bytecode(), reg)));
+        sb.shaderResourceEnd = std::max(sb.shaderResourceEnd, reg + 1);
         views_.push_back(&sb.shaderResources[reg]);
         break;
       case RegisterClass::Sampler:

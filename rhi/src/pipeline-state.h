@@ -13,6 +13,10 @@ struct StageBindings {
   Ref<Shader> shader;
   std::array<Ref<Buffer>, COMMONSHADER_CONSTANT_BUFFER_API_SLOT_COUNT> constantBuffers;
   std::array<Ref<ShaderResourceView>, COMMONSHADER_INPUT_RESOURCE_SLOT_COUNT> shaderResources;
+  // One past the highest shader-resource slot ever set since the state was reset: walks over the
+  // bound views (binding a UAV unbinds its SRVs, as D3D11 does) stop there instead of at 128.
+  // Only grows, so it never hides a bound view.
+  uint32_t shaderResourceEnd = 0;
   std::array<Ref<SamplerState>, COMMONSHADER_SAMPLER_SLOT_COUNT> samplers;
 };
 
