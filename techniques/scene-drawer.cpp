@@ -94,8 +94,7 @@ uint64_t SceneDrawer::DrawDepth(DeviceContext& ctx, const glm::mat4& viewProj, c
   return DrawDepth(ctx, viewProj, keep, DepthShaders{});
 }
 
-uint64_t SceneDrawer::DrawDepth(DeviceContext& ctx, const glm::mat4& viewProj, const std::function<bool(uint32_t instance)>& keep,
-                                const DepthShaders& shaders) {
+void SceneDrawer::BindDepthPass(DeviceContext& ctx, const glm::mat4& viewProj, const DepthShaders& shaders) {
   SetFrame(ctx, viewProj, nullptr);
   gpu_.BindGeometry(ctx);
   // The caller's VS has depth-only's input signature, so depth-only's layout serves it too.
@@ -104,6 +103,11 @@ uint64_t SceneDrawer::DrawDepth(DeviceContext& ctx, const glm::mat4& viewProj, c
   ctx.PSSetShader(shaders.ps);
   BindConstants(ctx, ShaderStage::Vertex);
   if (shaders.ps) BindConstants(ctx, ShaderStage::Pixel);
+}
+
+uint64_t SceneDrawer::DrawDepth(DeviceContext& ctx, const glm::mat4& viewProj, const std::function<bool(uint32_t instance)>& keep,
+                                const DepthShaders& shaders) {
+  BindDepthPass(ctx, viewProj, shaders);
   uint64_t triangles = 0;
   for (const scene::DrawItem& d : gpu_.draws()) {
     if (!keep(d.instance)) continue;
@@ -115,13 +119,7 @@ uint64_t SceneDrawer::DrawDepth(DeviceContext& ctx, const glm::mat4& viewProj, c
 }
 
 void SceneDrawer::DrawDepthIndirect(DeviceContext& ctx, const glm::mat4& viewProj, const DepthShaders& shaders, Buffer* args, uint32_t firstArgsByte) {
-  SetFrame(ctx, viewProj, nullptr);
-  gpu_.BindGeometry(ctx);
-  ctx.IASetInputLayout(depthLayout_.get());
-  ctx.VSSetShader(shaders.vs ? shaders.vs : depthVs_.get());
-  ctx.PSSetShader(shaders.ps);
-  BindConstants(ctx, ShaderStage::Vertex);
-  if (shaders.ps) BindConstants(ctx, ShaderStage::Pixel);
+  BindDepthPass(ctx, viewProj, shaders);
   uint32_t offset = firstArgsByte;
   for (const scene::DrawItem& d : gpu_.draws()) {
     SetObject(ctx, d.instance);

@@ -7,23 +7,10 @@ Times are medians over the timed frames after warm-up (the bench's gpu_ms), per 
 refinement counters and accuracy are Vulkan's, with "GL same" saying whether GL's were identical."""
 import json
 import sys
-from pathlib import Path
+
+from techniques_v_tables import header, row, runs
 
 BACKENDS = ("vulkan", "gl")
-
-
-def runs(out, name):
-    p = Path(out) / f"{name}.json"
-    return json.loads(p.read_text())["runs"] if p.exists() else []
-
-
-def row(cells):
-    print("| " + " | ".join(str(c) for c in cells) + " |")
-
-
-def header(cells):
-    row(cells)
-    print("|" + "---|" * len(cells))
 
 
 def label(r):

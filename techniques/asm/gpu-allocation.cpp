@@ -16,10 +16,6 @@ constexpr uint32_t kOrderMax = 2048;  // CSOrder's sort, one group
 
 uint32_t Groups(uint32_t n, uint32_t size) { return (n + size - 1) / size; }
 
-Ref<Buffer> RawBuffer(Device& device, uint32_t bytes, uint32_t bind, const char* name, uint32_t misc = 0) {
-  return MakeRawBuffer(device, bytes, bind, name, misc);
-}
-
 // cbuffer AsmGpu.
 struct AllocationConstants {
   uint32_t frameNumber, slotCount, batchPages, drawCount, orderedSlots, maxLevel, requestCapacity, pad0;
@@ -33,11 +29,11 @@ GpuAllocation::GpuAllocation(Device& device, uint32_t slots, uint32_t pageSize, 
     : slots_(slots), pageSize_(pageSize), poolPages_(poolPages), batch_(batchPages), maxLevel_(maxLevel), firstRefined_(firstRefinedLevel),
       device_(device) {
   const uint32_t rw = BIND_UNORDERED_ACCESS | BIND_SHADER_RESOURCE;
-  state_ = RawBuffer(device, kStateWords * 4, rw, "asm gpu state");
-  slotBuf_ = RawBuffer(device, slots * 8, BIND_UNORDERED_ACCESS, "asm gpu slots");
-  bins_ = RawBuffer(device, (512 + kOrderMax) * 4, BIND_UNORDERED_ACCESS, "asm gpu age bins and slot order");
-  changes_ = RawBuffer(device, 2 * batch_ * 8, rw, "asm gpu table changes");
-  newPages_ = RawBuffer(device, batch_ * 8, rw, "asm gpu new pages");
+  state_ = MakeRawBuffer(device, kStateWords * 4, rw, "asm gpu state");
+  slotBuf_ = MakeRawBuffer(device, slots * 8, BIND_UNORDERED_ACCESS, "asm gpu slots");
+  bins_ = MakeRawBuffer(device, (512 + kOrderMax) * 4, BIND_UNORDERED_ACCESS, "asm gpu age bins and slot order");
+  changes_ = MakeRawBuffer(device, 2 * batch_ * 8, rw, "asm gpu table changes");
+  newPages_ = MakeRawBuffer(device, batch_ * 8, rw, "asm gpu new pages");
   stateUav_ = MakeRawUav(device, state_.get());
   slotUav_ = MakeRawUav(device, slotBuf_.get());
   binsUav_ = MakeRawUav(device, bins_.get());
@@ -141,13 +137,13 @@ void GpuAllocation::Allocate(DeviceContext& ctx, SceneDrawer& drawer, const GpuA
     drawTemplate_ = device_.CreateBuffer(d, &init);
     drawTemplate_->SetDebugName("asm gpu draw argument template");
     drawTemplateSrv_ = MakeRawSrv(device_, drawTemplate_.get());
-    args_ = RawBuffer(device_, (kDrawArgs + 10 * std::max(drawCount_, 1u)) * 4, BIND_UNORDERED_ACCESS, "asm gpu indirect arguments",
+    args_ = MakeRawBuffer(device_, (kDrawArgs + 10 * std::max(drawCount_, 1u)) * 4, BIND_UNORDERED_ACCESS, "asm gpu indirect arguments",
                       RESOURCE_MISC_DRAWINDIRECT_ARGS);
     argsUav_ = MakeRawUav(device_, args_.get());
     bytes_ += uint64_t(words.size()) * 4 + uint64_t(kDrawArgs + 10 * drawCount_) * 4;
   }
   if (missingCapacity_ < t.requestCapacity) {
-    missing_ = RawBuffer(device_, t.requestCapacity * 4, BIND_UNORDERED_ACCESS, "asm gpu missing pages");
+    missing_ = MakeRawBuffer(device_, t.requestCapacity * 4, BIND_UNORDERED_ACCESS, "asm gpu missing pages");
     missingUav_ = MakeRawUav(device_, missing_.get());
     bytes_ += uint64_t(t.requestCapacity - missingCapacity_) * 4;
     missingCapacity_ = t.requestCapacity;

@@ -147,6 +147,8 @@ class SceneDrawer {
   const scene::GpuScene& gpu() const { return gpu_; }
 
  private:
+  // Frame constants, geometry, the depth-only input layout and the pass's shaders and constants.
+  void BindDepthPass(DeviceContext& ctx, const glm::mat4& viewProj, const DepthShaders& shaders);
   const scene::GpuScene& gpu_;
   Ref<Buffer> frame_, object_;
   Ref<VertexShader> depthVs_;
