@@ -186,7 +186,7 @@ SearchResult Search(const SearchOptions& o, const std::function<void(const std::
   if (sc.name.empty()) sc.name = fs::path(o.scene).stem().string();
   if (sc.cameraPaths.empty()) sc.cameraPaths = scene::CameraPathsFor(sc);
   const scene::CameraPath& path = sc.cameraPathOrFile(o.path);  // throws listing the scene's paths; loads a recorded path file
-  if (!sc.useRecordedLight(path)) say(o.path + ": the recorded light turns along the path; the runs keep the first key's direction");
+  if (!sc.useRecordedLight(path)) say(o.path + ": the recorded light turns along the path; each frame takes its direction there");
   // A recorded file can be recorded again under the same name: its contents key the cache.
   const std::string pathContents = scene::IsCameraPathFile(o.path) ? Hex(HashFile(14695981039346656037ull, o.path)) : "";
 

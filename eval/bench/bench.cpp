@@ -314,7 +314,7 @@ nlohmann::json RunBench(const BenchOptions& o, const Progress& progress) {
     // Throws listing the scene's paths; a recorded path file (the viewer's) is added to the scene.
     const scene::CameraPath& path = sc.cameraPathOrFile(o.path);
     if (!sc.useRecordedLight(path) && progress)
-      progress(o.path + ": the recorded light turns along the path; the run keeps the first key's direction");
+      progress(o.path + ": the recorded light turns along the path; each frame takes its direction there, in the techniques and the reference");
     if (o.lightSize) SetLightSize(sc, *o.lightSize);
     if (o.lightGammas.empty()) {
       scenes.push_back(std::move(sc));

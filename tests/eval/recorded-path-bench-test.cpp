@@ -6,6 +6,8 @@
 #include "backend-test.h"
 
 #include <fstream>
+#include <map>
+#include <utility>
 
 #include "bench.h"
 
@@ -79,6 +81,36 @@ TEST(RecordedPathBench, ARecordedLightBecomesTheRunsLight) {
   o.frames = 1;
   nlohmann::json sceneSun = bench::RunBench(o, {});
   EXPECT_NE(Measured(overhead["runs"][0]), Measured(sceneSun["runs"][0])) << "the recorded light was not used";
+}
+
+// A light that turns along the path turns in the run: with two frames, the first is lit as by
+// the first key's light and the last as by the last key's, in the techniques and the reference
+// (the same misclassification per frame as a path holding either light).
+TEST(RecordedPathBench, ALightTurningAlongThePathTurnsInTheRun) {
+  scene::Scene s = scene::MakeBuiltinScene("default");
+  s.cameraPaths = scene::CameraPathsFor(s);
+  scene::CameraPath hold = s.cameraPath("slow-pan"), overhead = hold, turn = hold;
+  for (scene::CameraKey& k : overhead.keys) k.lightDirection = glm::vec3(0.0f, -1.0f, 0.0f);
+  for (scene::CameraKey& k : hold.keys) k.lightDirection = s.light.direction;
+  turn.keys.front().lightDirection = s.light.direction;
+  turn.keys.back().lightDirection = glm::vec3(0.0f, -1.0f, 0.0f);
+  std::map<std::string, nlohmann::json> series, measured;
+  for (const auto& [name, path] : {std::pair<std::string, const scene::CameraPath*>{"hold", &hold}, {"overhead", &overhead}, {"turn", &turn}}) {
+    std::filesystem::path file = Dir() / ("light-" + name + ".json");
+    scene::SaveCameraPath(*path, file);
+    bench::BenchOptions o = Options(file.string(), "light-" + name);
+    o.width = 160;
+    o.height = 90;
+    o.frames = 2;
+    nlohmann::json run = bench::RunBench(o, {})["runs"][0];
+    series[name] = run["series"]["misclassified_pct"];
+    measured[name] = Measured(run);
+  }
+  EXPECT_EQ(series["turn"][0], series["hold"][0]);
+  EXPECT_EQ(series["turn"][1], series["overhead"][1]);
+  EXPECT_NE(series["hold"][1], series["overhead"][1]) << "the two lights must give different pictures";
+  EXPECT_NE(measured["turn"], measured["hold"]) << "the light did not turn";
+  EXPECT_NE(measured["turn"], measured["overhead"]) << "the first frame did not keep the first key's light";
 }
 
 TEST(RecordedPathBench, AMalformedFileFailsBeforeAnythingRuns) {
