@@ -209,8 +209,9 @@ void VulkanContext::Draw(const PipelineState& s, uint32_t dirty, const detail::D
     currentLayout_ = layout;
   }
 
-  CheckSampling(s, ShaderStage::Vertex, vs, call);
-  if (ps) CheckSampling(s, ShaderStage::Pixel, *ps, call);
+  // Sampling support depends on the bindings only: an unchanged stage was checked before.
+  if (dirty & (DIRTY_BINDINGS_VS | DIRTY_RENDER_TARGETS)) CheckSampling(s, ShaderStage::Vertex, vs, call);
+  if (ps && (dirty & (DIRTY_BINDINGS_PS | DIRTY_RENDER_TARGETS))) CheckSampling(s, ShaderStage::Pixel, *ps, call);
   // Everything the draw reads or writes, so the barriers it needs are known before recording.
   TrackStageResources(s, ShaderStage::Vertex, vs);
   if (ps) TrackStageResources(s, ShaderStage::Pixel, *ps);
@@ -280,13 +281,8 @@ void VulkanContext::Draw(const PipelineState& s, uint32_t dirty, const detail::D
       boundIndex_ = want;
     }
   }
-  ResolveDescriptors(s, ShaderStage::Vertex, vs, scratchItems_, scratchOffsets_, call);
-  const bool bindVs = PrepareDescriptors(gfxSets_[0], vs.setLayout, scratchItems_, scratchOffsets_, layout);
-  bool bindPs = false;
-  if (ps) {
-    ResolveDescriptors(s, ShaderStage::Pixel, *ps, scratchItems_, scratchOffsets_, call);
-    bindPs = PrepareDescriptors(gfxSets_[1], ps->setLayout, scratchItems_, scratchOffsets_, layout);
-  }
+  const bool bindVs = StageDescriptorsFor(gfxSets_[0], s, ShaderStage::Vertex, vs, dirty, layout, call);
+  const bool bindPs = ps && StageDescriptorsFor(gfxSets_[1], s, ShaderStage::Pixel, *ps, dirty, layout, call);
   if (bindVs && bindPs) BindSets(VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, &gfxSets_[0], &gfxSets_[1]);
   else if (bindVs) BindSets(VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, &gfxSets_[0]);
   else if (bindPs) BindSets(VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 1, &gfxSets_[1]);
@@ -317,7 +313,7 @@ void VulkanContext::Dispatch(const PipelineState& s, uint32_t dirty, uint32_t x,
   const VkPhysicalDeviceLimits& lim = dev_->props.limits;
   if (x > lim.maxComputeWorkGroupCount[0] || y > lim.maxComputeWorkGroupCount[1] || z > lim.maxComputeWorkGroupCount[2])
     Throw(ErrorId::NOT_SUPPORTED, call, DescribeObject(cs.owner), "the thread-group count exceeds this device's maxComputeWorkGroupCount");
-  CheckSampling(s, ShaderStage::Compute, cs, call);
+  if (dirty & (DIRTY_BINDINGS_CS | DIRTY_COMPUTE_UAVS)) CheckSampling(s, ShaderStage::Compute, cs, call);
   VkCommandBuffer cmd = Cmd();
   TrackStageResources(s, ShaderStage::Compute, cs);
   if (argsBuffer) UseBuffer(BufferOf(argsBuffer), access::IndirectArgs());
@@ -327,8 +323,7 @@ void VulkanContext::Dispatch(const PipelineState& s, uint32_t dirty, uint32_t x,
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p);
     boundCompute_ = p;
   }
-  ResolveDescriptors(s, ShaderStage::Compute, cs, scratchItems_, scratchOffsets_, call);
-  if (PrepareDescriptors(computeSet_, cs.setLayout, scratchItems_, scratchOffsets_, cs.computeLayout))
+  if (StageDescriptorsFor(computeSet_, s, ShaderStage::Compute, cs, dirty, cs.computeLayout, call))
     BindSets(VK_PIPELINE_BIND_POINT_COMPUTE, cs.computeLayout, 0, &computeSet_);
   if (argsBuffer) {
     const VkBufferObj& ab = BufferOf(argsBuffer);

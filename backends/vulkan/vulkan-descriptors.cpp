@@ -21,6 +21,15 @@ const UnorderedAccessView* UavAt(const PipelineState& s, ShaderStage stage, uint
 
 bool Overlaps(uint32_t a0, uint32_t an, uint32_t b0, uint32_t bn) { return a0 < b0 + bn && b0 < a0 + an; }
 
+// The core's dirty bits under which a stage's resolved descriptors may change: its own bindings
+// (and shader), the depth target (SrvLayout) and the UAVs it sees.
+uint32_t StageInputs(ShaderStage stage) {
+  uint32_t bits = DIRTY_BINDINGS_VS << uint32_t(stage);
+  if (stage == ShaderStage::Compute) return bits | DIRTY_COMPUTE_UAVS;
+  bits |= DIRTY_RENDER_TARGETS;
+  return stage == ShaderStage::Pixel ? bits | DIRTY_PIXEL_UAVS : bits;
+}
+
 uint64_t HashItems(VkDescriptorSetLayout layout, const std::vector<DescriptorItem>& items) {
   uint64_t h = uint64_t(layout);
   auto mix = [&](uint64_t v) { h = (h ^ v) * 0x100000001b3ull; };
@@ -246,6 +255,39 @@ bool VulkanContext::PrepareDescriptors(StageDescriptors& sd, VkDescriptorSetLayo
   sd.boundWith = pipeLayout;
   sd.dynamicOffsets.swap(dynamicOffsets);
   return true;
+}
+
+bool VulkanContext::KeepDescriptors(StageDescriptors& sd, const PipelineState& s, ShaderStage stage, const VkShaderObj& sh, uint32_t dirty) {
+  if (!sh.setKeptAcrossDraws || !sd.set || sd.shaderUid != sh.uid || sd.layout != sh.setLayout || (dirty & StageInputs(stage))) return false;
+  if (sh.rangeInSet && sd.renameEpoch != renameEpoch_) return false;
+  // Same bindings: only the dynamic cbuffers' offsets may have moved, within the same VkBuffer.
+  const StageBindings& b = s.stage(stage);
+  scratchOffsets_.clear();
+  size_t i = 0;
+  for (const ShaderBinding& sb : sh.bindings) {
+    if (sb.type == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC) {
+      const BufferRange& r = BufferOf(b.constantBuffers[sb.reg].get()).range;
+      if (r.buffer != sd.items[i].buffer) return false;
+      scratchOffsets_.push_back(uint32_t(r.offset));
+    }
+    ++i;
+  }
+  return true;
+}
+
+bool VulkanContext::StageDescriptorsFor(StageDescriptors& sd, const PipelineState& s, ShaderStage stage, const VkShaderObj& sh, uint32_t dirty,
+                                        VkPipelineLayout pipeLayout, const char* call) {
+  if (KeepDescriptors(sd, s, stage, sh, dirty)) {
+    if (sd.boundWith == pipeLayout && sd.dynamicOffsets == scratchOffsets_) return false;
+    sd.boundWith = pipeLayout;
+    sd.dynamicOffsets.swap(scratchOffsets_);
+    return true;
+  }
+  ResolveDescriptors(s, stage, sh, scratchItems_, scratchOffsets_, call);
+  bool bind = PrepareDescriptors(sd, sh.setLayout, scratchItems_, scratchOffsets_, pipeLayout);
+  sd.shaderUid = sh.uid;
+  sd.renameEpoch = renameEpoch_;
+  return bind;
 }
 
 void VulkanContext::BindSets(VkPipelineBindPoint point, VkPipelineLayout pipeLayout, uint32_t firstSet, const StageDescriptors* first,

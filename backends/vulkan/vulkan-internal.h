@@ -296,6 +296,12 @@ struct VkShaderObj final : detail::BackendObject {
   }
   uint32_t writtenTargets = 0;  // bit per SV_TargetN the pixel shader writes
   bool hasTarget1 = false;
+  // Whether a draw that changed none of this stage's bindings may keep its descriptor set and only
+  // move the dynamic offsets (see VulkanContext::KeepDescriptors): not with repacked cbuffers,
+  // which are copied per draw. `rangeInSet`: a descriptor holds a buffer range that a
+  // WRITE_DISCARD rename moves (storage, texel or non-dynamic uniform buffers).
+  bool setKeptAcrossDraws = false;
+  bool rangeInSet = false;
   VkShaderModule DualSourceModule();
   VkShaderModule PointSizeModule();
   ~VkShaderObj() override;
@@ -533,6 +539,8 @@ class VulkanContext final : public detail::ContextBackend {
     VkDescriptorSet set = VK_NULL_HANDLE;
     VkPipelineLayout boundWith = VK_NULL_HANDLE;
     std::vector<uint32_t> dynamicOffsets;  // of the dynamic cbuffers, in binding order, as last bound
+    uint64_t shaderUid = 0;                // whose bindings `items` was resolved from (0: none)
+    uint64_t renameEpoch = 0;              // VulkanContext::renameEpoch_ at that time
   };
   struct RenderPassKey {
     std::array<uint64_t, SIMULTANEOUS_RENDER_TARGET_COUNT + 1> views{};  // view uids (0 = none)
@@ -554,6 +562,12 @@ class VulkanContext final : public detail::ContextBackend {
   // `dynamicOffsets` out.
   bool PrepareDescriptors(StageDescriptors& sd, VkDescriptorSetLayout layout, std::vector<DescriptorItem>& items,
                           std::vector<uint32_t>& dynamicOffsets, VkPipelineLayout pipeLayout);
+  // The stage's set for this draw: kept, with fresh dynamic offsets, when none of the stage's
+  // bindings changed (KeepDescriptors), else resolved and prepared again. True when sd must be
+  // bound again.
+  bool StageDescriptorsFor(StageDescriptors& sd, const PipelineState& s, ShaderStage stage, const VkShaderObj& sh, uint32_t dirty,
+                           VkPipelineLayout pipeLayout, const char* call);
+  bool KeepDescriptors(StageDescriptors& sd, const PipelineState& s, ShaderStage stage, const VkShaderObj& sh, uint32_t dirty);
   // Binds first's set at firstSet, and second's (when given) at firstSet + 1 in the same call.
   void BindSets(VkPipelineBindPoint point, VkPipelineLayout pipeLayout, uint32_t firstSet, const StageDescriptors* first,
                 const StageDescriptors* second = nullptr);
@@ -633,6 +647,7 @@ class VulkanContext final : public detail::ContextBackend {
   std::unordered_map<uint64_t, CachedSet> setCache_;
   std::vector<uint32_t> scratchOffsets_;
   std::vector<uint32_t> bindOffsets_;  // both graphics sets' dynamic offsets, for one bind call
+  uint64_t renameEpoch_ = 1;           // counts renames of any buffer (Rename): ranges in sets moved
   std::array<std::array<RepackedConstants, COMMONSHADER_CONSTANT_BUFFER_API_SLOT_COUNT>, SHADER_STAGE_COUNT> repacked_{};
   std::vector<VkQueryObj*> activeQueries_;
   std::shared_ptr<QuerySegment> segment_;  // the occlusion query running now

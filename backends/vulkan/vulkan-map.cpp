@@ -80,6 +80,7 @@ void VulkanContext::Rename(VkBufferObj& b) {
   if (!fresh) fresh = dev_->alloc.AllocateBuffer(b.range.size, b.kind, "Map", DescribeObject(b.owner), b.ownVkBuffer);
   b.retired.push_back({b.range, b.lastUse});
   b.range = fresh;
+  ++renameEpoch_;
   b.state = {};
   b.lastUse = b.lastWrite = 0;
 }

@@ -46,8 +46,9 @@ class DrawValidator {
  public:
   // Throw for what D3D11's debug layer reports as an error. Registers the shaders read with
   // nothing bound are collected in `unbound` (or throw SP_UNBOUND_RESOURCE on a strict device).
-  static void CheckDraw(DeviceContext& ctx, const DrawArgs& args, const char* call, std::vector<UnboundRead>& unbound);
-  static void CheckDispatch(DeviceContext& ctx, const char* call, std::vector<UnboundRead>& unbound);
+  // False when a warning was given: the next draw must check (and warn) again.
+  static bool CheckDraw(DeviceContext& ctx, const DrawArgs& args, const char* call, std::vector<UnboundRead>& unbound);
+  static bool CheckDispatch(DeviceContext& ctx, const char* call, std::vector<UnboundRead>& unbound);
 };
 
 // For one draw or dispatch: puts the device's null resources into the unbound slots the shaders

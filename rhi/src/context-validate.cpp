@@ -38,6 +38,7 @@ struct Checker {
   const char* call;
   std::vector<UnboundRead>& unbound;
   bool strict;
+  mutable bool warned = false;  // a warning is due at every draw, so such a draw is not repeatable
 
   [[noreturn]] void fail(ErrorId id, const Shader* sh, const std::string& detail) const { Fail(id, call, Describe(sh), detail); }
 
@@ -139,10 +140,12 @@ struct Checker {
                     " bytes) but no constant buffer is bound there");
         continue;
       }
-      if (buf->GetDesc().ByteWidth < cb.size)
+      if (buf->GetDesc().ByteWidth < cb.size) {
+        warned = true;
         ctx.GetDevice()->Message(MessageSeverity::Warning, std::string(call) + ": " + Describe(buf) + " at " + SlotName(stage, 'b', cb.registerIndex) +
                                                                " is smaller than cbuffer '" + cb.name + "' (" + std::to_string(cb.size) +
                                                                " bytes); the rest reads as 0 as in D3D11");
+      }
     }
     for (const ShaderResourceBinding& r : refl.resources) {
       switch (r.registerClass) {
@@ -192,7 +195,7 @@ struct Checker {
 
 }  // namespace
 
-void DrawValidator::CheckDraw(DeviceContext& ctx, const DrawArgs& args, const char* call, std::vector<UnboundRead>& unbound) {
+bool DrawValidator::CheckDraw(DeviceContext& ctx, const DrawArgs& args, const char* call, std::vector<UnboundRead>& unbound) {
   const PipelineState& s = *ctx.state_;
   Checker c{ctx, s, call, unbound, DeviceAccess::StrictUnboundResources(*ctx.GetDevice())};
   const Shader* vs = s.stage(ShaderStage::Vertex).shader.get();
@@ -267,13 +270,15 @@ void DrawValidator::CheckDraw(DeviceContext& ctx, const DrawArgs& args, const ch
                  std::to_string(o.semanticIndex) + " is " + std::string(FormatName(rtv->ViewFormat())));
     }
   }
+  return !c.warned;
 }
 
-void DrawValidator::CheckDispatch(DeviceContext& ctx, const char* call, std::vector<UnboundRead>& unbound) {
+bool DrawValidator::CheckDispatch(DeviceContext& ctx, const char* call, std::vector<UnboundRead>& unbound) {
   const PipelineState& s = *ctx.state_;
   if (!s.stage(ShaderStage::Compute).shader) Fail(ErrorId::DRAW_STATE_INVALID, call, "pipeline", "no compute shader is bound (CSSetShader)");
   Checker c{ctx, s, call, unbound, DeviceAccess::StrictUnboundResources(*ctx.GetDevice())};
   c.checkStage(ShaderStage::Compute);
+  return !c.warned;
 }
 
 const char* SrvDimensionName(SRV_DIMENSION d) {

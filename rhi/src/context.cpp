@@ -313,24 +313,44 @@ void DeviceContext::OMSetBlendState(BlendState* s, const float blendFactor[4], u
 // ---------------------------------------------------------------------------------------------
 // Draw and dispatch
 
+namespace {
+constexpr uint32_t kComputeInputs = DIRTY_BINDINGS_CS | DIRTY_COMPUTE_UAVS;
+constexpr uint32_t kDrawInputs = DIRTY_ALL & ~kComputeInputs;
+}  // namespace
+
+// A draw's validation depends only on the bound state and on whether it is indexed, so a draw
+// after one that passed with nothing unbound and no warning, with no state changed since (no
+// dirty bit), passes too: per-draw constant updates (Map, UpdateSubresource) change contents,
+// never bindings. Recording it here is what keeps the per-draw cost near a raw API's.
 void DeviceContext::DoDraw(const detail::DrawArgs& args, const char* call) {
+  const bool indexed = args.kind == detail::DrawArgs::DrawIndexed || args.kind == detail::DrawArgs::DrawIndexedInstancedIndirect;
+  const uint8_t kind = indexed ? 2 : 1;
   std::vector<UnboundRead> unbound;
-  DrawValidator::CheckDraw(*this, args, call, unbound);
+  bool repeatable = true;
+  if ((dirty_ & kDrawInputs) || validDraw_ != kind) repeatable = DrawValidator::CheckDraw(*this, args, call, unbound);
   // D3D11 rasterizes nothing into a viewport of zero width or height (Vulkan forbids one; none set
   // at all is refused by the validator above). The state stays dirty for the next draw.
   const VIEWPORT& vp = state_->viewports[0];
   if (!(vp.Width > 0 && vp.Height > 0)) return;
   NullBindings nulls(*this, unbound);
+  validDraw_ = 0;
   backend_->Draw(*state_, dirty_ | nulls.Dirty(), args);
-  dirty_ = 0;
+  // The compute bits stay for the next dispatch, whose backend has not seen them.
+  dirty_ &= kComputeInputs;
+  validDraw_ = repeatable && unbound.empty() ? kind : 0;
 }
 
 void DeviceContext::DoDispatch(uint32_t x, uint32_t y, uint32_t z, Buffer* argsBuffer, uint32_t argsOffset, const char* call) {
   std::vector<UnboundRead> unbound;
-  DrawValidator::CheckDispatch(*this, call, unbound);
+  bool repeatable = true;
+  if ((dirty_ & kComputeInputs) || !validDispatch_) repeatable = DrawValidator::CheckDispatch(*this, call, unbound);
   NullBindings nulls(*this, unbound);
-  if (argsBuffer || (x && y && z)) backend_->Dispatch(*state_, dirty_ | nulls.Dirty(), x, y, z, argsBuffer, argsOffset);
-  dirty_ &= ~uint32_t(DIRTY_BINDINGS_CS | DIRTY_COMPUTE_UAVS);
+  // An empty dispatch records nothing: the backend has not seen the state, which stays dirty.
+  if (!argsBuffer && !(x && y && z)) return;
+  validDispatch_ = false;
+  backend_->Dispatch(*state_, dirty_ | nulls.Dirty(), x, y, z, argsBuffer, argsOffset);
+  dirty_ &= ~kComputeInputs;
+  validDispatch_ = repeatable && unbound.empty();
 }
 
 void DeviceContext::Draw(uint32_t vertexCount, uint32_t startVertex) {

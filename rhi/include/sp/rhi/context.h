@@ -232,6 +232,8 @@ class DeviceContext {
   std::unique_ptr<detail::ContextBackend> backend_;
   std::unique_ptr<detail::PipelineState> state_;
   uint32_t dirty_;
+  uint8_t validDraw_ = 0;         // the last draw's validation holds while no draw input is dirty: 1 not indexed, 2 indexed
+  bool validDispatch_ = false;    // the same for dispatches and the compute inputs
   std::vector<std::pair<Resource*, uint32_t>> mapped_;  // currently mapped subresources
   std::vector<Query*> activeQueries_;                   // between Begin and End
   uint32_t comRefs_ = 0;

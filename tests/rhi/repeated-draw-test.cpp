@@ -1,0 +1,186 @@
+// Draws that repeat with nothing rebound: the core keeps the last draw's validation and the Vulkan
+// backend keeps a stage's descriptor set (moving only dynamic offsets) while no state changed, so
+// the per-draw cost stays near a raw API's. These tests hold both short cuts to D3D11's results:
+// every draw still sees the data written before it, and every state change is checked again.
+#include <array>
+#include <optional>
+
+#include "rhi-test-util.h"
+
+namespace sp::test {
+namespace {
+
+class RepeatedDrawTest : public BackendTest {};
+class RepeatedDrawValidationTest : public BackendTest {};
+
+// Strip i of 8 comes from the vertex ids Draw(4, 4 * i) generates: no vertex-shader bindings.
+const char* kStripVS = R"(
+float4 main(uint id : SV_VertexID) : SV_Position {
+  float strip = float(id / 4u);
+  float x = (strip + float(id & 1u)) / 4.0 - 1.0;
+  float y = (id & 2u) ? -1.0 : 1.0;  // clockwise: front-facing under the default state
+  return float4(x, y, 0.5, 1.0);
+}
+)";
+
+// A dynamic cbuffer (dynamic offset on Vulkan) and a dynamic structured buffer (its range is in
+// the descriptor set), renamed between draws in turn.
+const char* kSumPS = R"(
+cbuffer Color : register(b0) { float4 color; };
+StructuredBuffer<float4> extra : register(t0);
+float4 main(float4 p : SV_Position) : SV_Target { return color + extra[0]; }
+)";
+
+Ref<Buffer> DynamicBuffer(Device& dev, uint32_t size, uint32_t bind, uint32_t misc = 0, uint32_t stride = 0) {
+  BUFFER_DESC d;
+  d.ByteWidth = size;
+  d.Usage = USAGE_DYNAMIC;
+  d.BindFlags = bind;
+  d.CPUAccessFlags = CPU_ACCESS_WRITE;
+  d.MiscFlags = misc;
+  d.StructureByteStride = stride;
+  return dev.CreateBuffer(d);
+}
+
+void WriteDiscard(DeviceContext& ctx, Buffer* b, const float (&v)[4]) {
+  MAPPED_SUBRESOURCE m;
+  ASSERT_TRUE(ctx.Map(b, 0, MAP_WRITE_DISCARD, 0, &m));
+  std::memcpy(m.pData, v, sizeof(v));
+  ctx.Unmap(b, 0);
+}
+
+TEST_P(RepeatedDrawTest, EveryDrawSeesTheBuffersWrittenBeforeItWithNothingRebound) {
+  const uint32_t W = 32, H = 4;
+  Target t = MakeTarget(device(), W, H, FORMAT_R32G32B32A32_FLOAT);
+  Ref<VertexShader> vs = device().CreateVertexShader(CompileHlsl(kStripVS, "vs_5_0", "main"));
+  Ref<PixelShader> ps = device().CreatePixelShader(CompileHlsl(kSumPS, "ps_5_0", "main"));
+  Ref<Buffer> cb = DynamicBuffer(device(), 16, BIND_CONSTANT_BUFFER);
+  Ref<Buffer> sb = DynamicBuffer(device(), 16, BIND_SHADER_RESOURCE, RESOURCE_MISC_BUFFER_STRUCTURED, 16);
+  Ref<ShaderResourceView> srv = device().CreateShaderResourceView(sb.get());
+  float color[4] = {0, 0, 0, 1}, extra[4] = {0, 0, 0, 0};
+  WriteDiscard(ctx(), cb.get(), color);
+  WriteDiscard(ctx(), sb.get(), extra);
+  RenderTargetView* rtvs[] = {t.rtv.get()};
+  ctx().OMSetRenderTargets(1, rtvs, nullptr);
+  SetViewport(ctx(), W, H);
+  ctx().IASetPrimitiveTopology(PRIMITIVE_TOPOLOGY_TRIANGLESTRIP);
+  ctx().VSSetShader(vs.get());
+  ctx().PSSetShader(ps.get());
+  ctx().PSSetConstantBuffers(0, {cb.get()});
+  ctx().PSSetShaderResources(0, {srv.get()});
+  // Even strips rename only the cbuffer, odd ones only the structured buffer, strip 7 neither.
+  std::vector<std::array<float, 4>> expected;
+  for (uint32_t i = 0; i < 8; ++i) {
+    if (i < 7 && i % 2 == 0) {
+      color[0] = float(i + 1);
+      WriteDiscard(ctx(), cb.get(), color);
+    } else if (i < 7) {
+      extra[1] = float(10 * i);
+      WriteDiscard(ctx(), sb.get(), extra);
+    }
+    ctx().Draw(4, 4 * i);
+    expected.push_back({color[0] + extra[0], color[1] + extra[1], color[2] + extra[2], color[3] + extra[3]});
+  }
+  std::vector<float> px = ReadTextureAs<float>(device(), ctx(), t.texture.get());
+  for (uint32_t y = 0; y < H; ++y)
+    for (uint32_t x = 0; x < W; ++x)
+      for (uint32_t c = 0; c < 4; ++c) ASSERT_EQ(px[(y * W + x) * 4 + c], expected[x / 4][c]) << "pixel " << x << "," << y << " channel " << c;
+}
+
+const char* kTexturePS = R"(
+Texture2D tex : register(t0);
+SamplerState smp : register(s0);
+float4 main(float4 p : SV_Position) : SV_Target { return tex.Sample(smp, float2(0.5, 0.5)); }
+)";
+
+const char* kFillCS = R"(
+RWStructuredBuffer<uint> outBuf : register(u0);
+[numthreads(1, 1, 1)] void main(uint3 id : SV_DispatchThreadID) { outBuf[0] = 7; }
+)";
+
+// The id of the error the call throws, or none.
+template <class F>
+std::optional<ErrorId> ErrorOf(F&& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.id();
+  }
+  return std::nullopt;
+}
+
+// After a draw that passed, a draw with a state change in between is checked again: a wrong view,
+// an indexed draw without an index buffer, a dispatch whose UAV changed while a draw ran between.
+TEST_P(RepeatedDrawValidationTest, AChangeAfterADrawThatPassedIsCheckedAgain) {
+  Target t = MakeTarget(device(), 8, 8, FORMAT_R8G8B8A8_UNORM);
+  Ref<VertexShader> vs = device().CreateVertexShader(CompileHlsl(kStripVS, "vs_5_0", "main"));
+  Ref<PixelShader> ps = device().CreatePixelShader(CompileHlsl(kTexturePS, "ps_5_0", "main"));
+  Ref<Texture2D> tex = MakeTexture2D(device(), 4, 4, FORMAT_R8G8B8A8_UNORM, BIND_SHADER_RESOURCE);
+  Ref<ShaderResourceView> srv = device().CreateShaderResourceView(tex.get());
+  Ref<Texture2D> uintTex = MakeTexture2D(device(), 4, 4, FORMAT_R8G8B8A8_UINT, BIND_SHADER_RESOURCE);
+  Ref<ShaderResourceView> uintSrv = device().CreateShaderResourceView(uintTex.get());
+  Ref<SamplerState> smp = device().CreateSamplerState(SAMPLER_DESC{});
+  RenderTargetView* rtvs[] = {t.rtv.get()};
+  ctx().OMSetRenderTargets(1, rtvs, nullptr);
+  SetViewport(ctx(), 8, 8);
+  ctx().IASetPrimitiveTopology(PRIMITIVE_TOPOLOGY_TRIANGLESTRIP);
+  ctx().VSSetShader(vs.get());
+  ctx().PSSetShader(ps.get());
+  ctx().PSSetShaderResources(0, {srv.get()});
+  ctx().PSSetSamplers(0, {smp.get()});
+  EXPECT_EQ(ErrorOf([&] { ctx().Draw(4, 0); }), std::nullopt);
+  EXPECT_EQ(ErrorOf([&] { ctx().Draw(4, 0); }), std::nullopt);
+  ctx().PSSetShaderResources(0, {uintSrv.get()});  // a UINT view where the shader reads float
+  EXPECT_EQ(ErrorOf([&] { ctx().Draw(4, 0); }), ErrorId::RESOURCE_TYPE_MISMATCH);
+  ctx().PSSetShaderResources(0, {srv.get()});
+  EXPECT_EQ(ErrorOf([&] { ctx().Draw(4, 0); }), std::nullopt);
+  // Same state, but indexed: whether a draw is indexed is part of what was checked.
+  EXPECT_EQ(ErrorOf([&] { ctx().DrawIndexed(4, 0, 0); }), ErrorId::DRAW_STATE_INVALID);
+  EXPECT_EQ(ErrorOf([&] { ctx().Draw(4, 0); }), std::nullopt);
+
+  Ref<ComputeShader> cs = device().CreateComputeShader(CompileHlsl(kFillCS, "cs_5_0", "main"));
+  UavBuffer good = MakeUavBuffer(device(), 4, 4);
+  Ref<Texture2D> uavTex = MakeTexture2D(device(), 4, 4, FORMAT_R32_UINT, BIND_UNORDERED_ACCESS);
+  Ref<UnorderedAccessView> texUav = device().CreateUnorderedAccessView(uavTex.get());
+  ctx().CSSetShader(cs.get());
+  ctx().CSSetUnorderedAccessViews(0, {good.uav.get()});
+  EXPECT_EQ(ErrorOf([&] { ctx().Dispatch(1, 1, 1); }), std::nullopt);
+  ctx().CSSetUnorderedAccessViews(0, {texUav.get()});  // a texture where the shader has a structured buffer
+  EXPECT_EQ(ErrorOf([&] { ctx().Draw(4, 0); }), std::nullopt);  // the draw must not hide the change from the dispatch
+  EXPECT_EQ(ErrorOf([&] { ctx().Dispatch(1, 1, 1); }), ErrorId::RESOURCE_TYPE_MISMATCH);
+  ctx().CSSetUnorderedAccessViews(0, {good.uav.get()});
+  EXPECT_EQ(ErrorOf([&] { ctx().Dispatch(1, 1, 1); }), std::nullopt);
+  ctx().CSSetUnorderedAccessViews(0, {nullptr});
+}
+
+// D3D11 warns at every draw that reads past the end of a too-small cbuffer, repeated draws too.
+TEST_P(RepeatedDrawValidationTest, ATooSmallCbufferWarnsAtEveryDraw) {
+  std::vector<std::string> warnings;
+  device().SetMessageCallback([&](MessageSeverity s, std::string_view text) {
+    if (s == MessageSeverity::Warning && text.find("is smaller than cbuffer") != std::string_view::npos) warnings.emplace_back(text);
+    if (s == MessageSeverity::Error) validationMessages.emplace_back(text);
+  });
+  Target t = MakeTarget(device(), 8, 8, FORMAT_R8G8B8A8_UNORM);
+  Ref<VertexShader> vs = device().CreateVertexShader(CompileHlsl(kStripVS, "vs_5_0", "main"));
+  Ref<PixelShader> ps = device().CreatePixelShader(CompileHlsl(R"(
+cbuffer Big : register(b0) { float4 a; float4 b; };
+float4 main(float4 p : SV_Position) : SV_Target { return a + b; }
+)",
+                                                               "ps_5_0", "main"));
+  Ref<Buffer> small = MakeBuffer(device(), BIND_CONSTANT_BUFFER, nullptr, 16);
+  RenderTargetView* rtvs[] = {t.rtv.get()};
+  ctx().OMSetRenderTargets(1, rtvs, nullptr);
+  SetViewport(ctx(), 8, 8);
+  ctx().IASetPrimitiveTopology(PRIMITIVE_TOPOLOGY_TRIANGLESTRIP);
+  ctx().VSSetShader(vs.get());
+  ctx().PSSetShader(ps.get());
+  ctx().PSSetConstantBuffers(0, {small.get()});
+  for (int i = 0; i < 3; ++i) ctx().Draw(4, 0);
+  EXPECT_EQ(warnings.size(), 3u);
+}
+
+SP_INSTANTIATE_BACKEND_TESTS(RepeatedDrawTest);
+SP_INSTANTIATE_VALIDATION_TESTS(RepeatedDrawValidationTest);
+
+}  // namespace
+}  // namespace sp::test
