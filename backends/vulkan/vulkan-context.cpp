@@ -138,7 +138,11 @@ void VulkanContext::SetDynamicState(const PipelineState& s) {
   dynamicStateValid_ = true;
 }
 
-void VulkanContext::BindVertexBuffers(const PipelineState& s) {
+void VulkanContext::BindVertexBuffers(const PipelineState& s, uint32_t dirty) {
+  // Nothing to compare when neither the bindings nor a vertex buffer's memory moved since the last draw.
+  if (vertexBindingsCurrent_ && vertexEpoch_ == vertexRenames_ && !(dirty & (DIRTY_VERTEX_BUFFERS | DIRTY_INPUT_LAYOUT | DIRTY_SHADERS))) return;
+  vertexBindingsCurrent_ = true;
+  vertexEpoch_ = vertexRenames_;
   // Built in a reused member: this runs for every draw, and a fresh vector was an allocation each.
   decltype(boundVertex_)& want = wantVertex_;
   want.clear();
@@ -273,7 +277,7 @@ void VulkanContext::Draw(const PipelineState& s, uint32_t dirty, const detail::D
   }
   const uint32_t dynamicBits = DIRTY_VIEWPORTS | DIRTY_RASTERIZER | DIRTY_RENDER_TARGETS | DIRTY_BLEND | DIRTY_DEPTH_STENCIL | DIRTY_INPUT_LAYOUT;
   if (!dynamicStateValid_ || (dirty & dynamicBits)) SetDynamicState(s);
-  BindVertexBuffers(s);
+  BindVertexBuffers(s, dirty);
   if (indexed) {
     std::tuple<VkBuffer, VkDeviceSize, VkIndexType> want{indexBuffer, indexOffset, s.indexFormat == FORMAT_R16_UINT ? VK_INDEX_TYPE_UINT16 : VK_INDEX_TYPE_UINT32};
     if (want != boundIndex_) {

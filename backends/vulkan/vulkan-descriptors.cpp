@@ -259,7 +259,7 @@ bool VulkanContext::PrepareDescriptors(StageDescriptors& sd, VkDescriptorSetLayo
 
 bool VulkanContext::KeepDescriptors(StageDescriptors& sd, const PipelineState& s, ShaderStage stage, const VkShaderObj& sh, uint32_t dirty) {
   if (!sh.setKeptAcrossDraws || !sd.set || sd.shaderUid != sh.uid || sd.layout != sh.setLayout || (dirty & StageInputs(stage))) return false;
-  if (sh.rangeInSet && sd.renameEpoch != renameEpoch_) return false;
+  if (sh.rangeInSet && sd.viewRenames != viewRenames_) return false;
   // Same bindings: only the dynamic cbuffers' offsets may have moved, within the same VkBuffer.
   const StageBindings& b = s.stage(stage);
   scratchOffsets_.clear();
@@ -286,7 +286,7 @@ bool VulkanContext::StageDescriptorsFor(StageDescriptors& sd, const PipelineStat
   ResolveDescriptors(s, stage, sh, scratchItems_, scratchOffsets_, call);
   bool bind = PrepareDescriptors(sd, sh.setLayout, scratchItems_, scratchOffsets_, pipeLayout);
   sd.shaderUid = sh.uid;
-  sd.renameEpoch = renameEpoch_;
+  sd.viewRenames = viewRenames_;
   return bind;
 }
 

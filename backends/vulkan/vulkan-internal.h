@@ -299,7 +299,7 @@ struct VkShaderObj final : detail::BackendObject {
   // Whether a draw that changed none of this stage's bindings may keep its descriptor set and only
   // move the dynamic offsets (see VulkanContext::KeepDescriptors): not with repacked cbuffers,
   // which are copied per draw. `rangeInSet`: a descriptor holds a buffer range that a
-  // WRITE_DISCARD rename moves (storage, texel or non-dynamic uniform buffers).
+  // WRITE_DISCARD rename moves (storage or texel buffers).
   bool setKeptAcrossDraws = false;
   bool rangeInSet = false;
   VkShaderModule DualSourceModule();
@@ -540,7 +540,7 @@ class VulkanContext final : public detail::ContextBackend {
     VkPipelineLayout boundWith = VK_NULL_HANDLE;
     std::vector<uint32_t> dynamicOffsets;  // of the dynamic cbuffers, in binding order, as last bound
     uint64_t shaderUid = 0;                // whose bindings `items` was resolved from (0: none)
-    uint64_t renameEpoch = 0;              // VulkanContext::renameEpoch_ at that time
+    uint64_t viewRenames = 0;              // VulkanContext::viewRenames_ at that time
   };
   struct RenderPassKey {
     std::array<uint64_t, SIMULTANEOUS_RENDER_TARGET_COUNT + 1> views{};  // view uids (0 = none)
@@ -580,7 +580,7 @@ class VulkanContext final : public detail::ContextBackend {
   void BeginRendering(const PipelineState& s);
   void TrackAttachments(const PipelineState& s);
   void SetDynamicState(const PipelineState& s);
-  void BindVertexBuffers(const PipelineState& s);
+  void BindVertexBuffers(const PipelineState& s, uint32_t dirty);
   void ResetCommandBufferState();
   // vulkan-transfer.cpp
   void CopyImageToStaging(VkTextureObj& src, const detail::Subresource& srcSub, VkTextureObj& dst, const detail::Subresource& dstSub, const BOX& box, uint32_t x,
@@ -647,7 +647,10 @@ class VulkanContext final : public detail::ContextBackend {
   std::unordered_map<uint64_t, CachedSet> setCache_;
   std::vector<uint32_t> scratchOffsets_;
   std::vector<uint32_t> bindOffsets_;  // both graphics sets' dynamic offsets, for one bind call
-  uint64_t renameEpoch_ = 1;           // counts renames of any buffer (Rename): ranges in sets moved
+  uint64_t viewRenames_ = 1;           // renames of buffers views may read (Rename): ranges in sets moved
+  uint64_t vertexRenames_ = 1;         // renames of vertex and index buffers
+  bool vertexBindingsCurrent_ = false; // boundVertex_ holds this batch's binding as of vertexEpoch_
+  uint64_t vertexEpoch_ = 0;
   std::array<std::array<RepackedConstants, COMMONSHADER_CONSTANT_BUFFER_API_SLOT_COUNT>, SHADER_STAGE_COUNT> repacked_{};
   std::vector<VkQueryObj*> activeQueries_;
   std::shared_ptr<QuerySegment> segment_;  // the occlusion query running now

@@ -80,7 +80,10 @@ void VulkanContext::Rename(VkBufferObj& b) {
   if (!fresh) fresh = dev_->alloc.AllocateBuffer(b.range.size, b.kind, "Map", DescribeObject(b.owner), b.ownVkBuffer);
   b.retired.push_back({b.range, b.lastUse});
   b.range = fresh;
-  ++renameEpoch_;
+  // What the move invalidates for draws that keep their bindings (KeepDescriptors, BindVertexBuffers).
+  // D3D11 never combines BIND_CONSTANT_BUFFER with other flags; dynamic cbuffers move by offset.
+  if (b.desc.BindFlags & (BIND_SHADER_RESOURCE | BIND_UNORDERED_ACCESS)) ++viewRenames_;
+  if (b.desc.BindFlags & (BIND_VERTEX_BUFFER | BIND_INDEX_BUFFER)) ++vertexRenames_;
   b.state = {};
   b.lastUse = b.lastWrite = 0;
 }

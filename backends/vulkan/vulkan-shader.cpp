@@ -84,10 +84,11 @@ std::unique_ptr<VkShaderObj> CreateShaderObj(VulkanDevice* dev, Shader& shader) 
   }
   s->repacks = products.repacks;
   s->sampledPairs = products.sampledPairs;
-  s->setKeptAcrossDraws = s->repacks.empty() && !s->bindings.empty();
+  // Non-dynamic uniform buffers (past the device's dynamic limit) hold a renamed cbuffer's offset.
+  s->setKeptAcrossDraws = s->repacks.empty() && !s->bindings.empty() && cbType == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC;
   for (const ShaderBinding& b : s->bindings)
-    s->rangeInSet |= b.type == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER || b.type == VK_DESCRIPTOR_TYPE_STORAGE_BUFFER ||
-                     b.type == VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER || b.type == VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER;
+    s->rangeInSet |= b.type == VK_DESCRIPTOR_TYPE_STORAGE_BUFFER || b.type == VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER ||
+                     b.type == VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER;
   s->setLayout = dev->SetLayout(s->bindings, StageFlags(s->stage));
   if (s->stage == ShaderStage::Compute) s->computeLayout = dev->PipelineLayout({s->setLayout});
   // D3D11's SV_InstanceID counts from 0 whatever StartInstanceLocation is; InstanceIndex does not.

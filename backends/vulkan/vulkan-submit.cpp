@@ -90,6 +90,7 @@ void VulkanContext::ResetCommandBufferState() {
   setCache_.clear();  // its sets come from the previous batch's pools
   dynamicStateValid_ = false;
   boundVertex_.clear();
+  vertexBindingsCurrent_ = false;
   boundIndex_ = {};
   chunk_ = {};
   chunkUsed_ = 0;
@@ -283,6 +284,9 @@ void VulkanContext::Poll() {
 
 bool VulkanContext::IsBusy(uint64_t serial) {
   if (serial <= dev_->completedSerial) return false;
+  // Used by the batch being recorded: busy without asking the driver (every Map of a buffer a draw
+  // just read would poll the fences otherwise).
+  if (serial >= dev_->recordingSerial) return true;
   Poll();
   return serial > dev_->completedSerial;
 }

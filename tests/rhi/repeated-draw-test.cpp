@@ -98,6 +98,52 @@ RWStructuredBuffer<uint> outBuf : register(u0);
 [numthreads(1, 1, 1)] void main(uint3 id : SV_DispatchThreadID) { outBuf[0] = 7; }
 )";
 
+// A dynamic vertex buffer renamed before every draw, nothing rebound: each strip is drawn where the
+// vertices written before its draw put it.
+TEST_P(RepeatedDrawTest, ARenamedVertexBufferIsReadAtItsNewPlace) {
+  const uint32_t W = 32, H = 4;
+  Target t = MakeTarget(device(), W, H, FORMAT_R32G32B32A32_FLOAT);
+  Ref<VertexShader> vs = device().CreateVertexShader(CompileHlsl(R"(
+float4 main(float2 p : POSITION) : SV_Position { return float4(p, 0.5, 1.0); }
+)",
+                                                                 "vs_5_0", "main"));
+  Ref<PixelShader> ps = device().CreatePixelShader(CompileHlsl(R"(
+cbuffer Color : register(b0) { float4 color; };
+float4 main(float4 p : SV_Position) : SV_Target { return color; }
+)",
+                                                               "ps_5_0", "main"));
+  const ShaderBytecode& vsCode = vs->Bytecode();
+  INPUT_ELEMENT_DESC el[] = {{"POSITION", 0, FORMAT_R32G32_FLOAT, 0, 0, INPUT_PER_VERTEX_DATA, 0}};
+  Ref<InputLayout> layout = device().CreateInputLayout(el, 1, vsCode);
+  Ref<Buffer> vb = DynamicBuffer(device(), 32, BIND_VERTEX_BUFFER);
+  Ref<Buffer> cb = DynamicBuffer(device(), 16, BIND_CONSTANT_BUFFER);
+  RenderTargetView* rtvs[] = {t.rtv.get()};
+  ctx().OMSetRenderTargets(1, rtvs, nullptr);
+  SetViewport(ctx(), W, H);
+  ctx().IASetPrimitiveTopology(PRIMITIVE_TOPOLOGY_TRIANGLESTRIP);
+  ctx().IASetInputLayout(layout.get());
+  Buffer* vbs[] = {vb.get()};
+  uint32_t stride = 8, offset = 0;
+  ctx().IASetVertexBuffers(0, 1, vbs, &stride, &offset);
+  ctx().VSSetShader(vs.get());
+  ctx().PSSetShader(ps.get());
+  ctx().PSSetConstantBuffers(0, {cb.get()});
+  for (uint32_t i = 0; i < 8; ++i) {
+    float x0 = float(i) / 4.0f - 1.0f, x1 = float(i + 1) / 4.0f - 1.0f;
+    float quad[8] = {x0, 1, x1, 1, x0, -1, x1, -1};
+    MAPPED_SUBRESOURCE m;
+    ASSERT_TRUE(ctx().Map(vb.get(), 0, MAP_WRITE_DISCARD, 0, &m));
+    std::memcpy(m.pData, quad, sizeof(quad));
+    ctx().Unmap(vb.get(), 0);
+    const float color[4] = {float(i + 1), 0, 0, 1};
+    WriteDiscard(ctx(), cb.get(), color);
+    ctx().Draw(4, 0);
+  }
+  std::vector<float> px = ReadTextureAs<float>(device(), ctx(), t.texture.get());
+  for (uint32_t y = 0; y < H; ++y)
+    for (uint32_t x = 0; x < W; ++x) ASSERT_EQ(px[(y * W + x) * 4], float(x / 4 + 1)) << "pixel " << x << "," << y;
+}
+
 // The id of the error the call throws, or none.
 template <class F>
 std::optional<ErrorId> ErrorOf(F&& f) {
