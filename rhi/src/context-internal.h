@@ -46,8 +46,10 @@ class DrawValidator {
  public:
   // Throw for what D3D11's debug layer reports as an error. Registers the shaders read with
   // nothing bound are collected in `unbound` (or throw SP_UNBOUND_RESOURCE on a strict device).
-  // False when a warning was given: the next draw must check (and warn) again.
-  static bool CheckDraw(DeviceContext& ctx, const DrawArgs& args, const char* call, std::vector<UnboundRead>& unbound);
+  // False when a warning was given: the next draw must check (and warn) again. `recheck`: the
+  // dirty bits since a draw that passed with nothing unbound (DIRTY_ALL: check everything);
+  // only the rules that read that state run again.
+  static bool CheckDraw(DeviceContext& ctx, const DrawArgs& args, const char* call, std::vector<UnboundRead>& unbound, uint32_t recheck);
   static bool CheckDispatch(DeviceContext& ctx, const char* call, std::vector<UnboundRead>& unbound);
 };
 

@@ -195,8 +195,9 @@ struct Checker {
 
 }  // namespace
 
-bool DrawValidator::CheckDraw(DeviceContext& ctx, const DrawArgs& args, const char* call, std::vector<UnboundRead>& unbound) {
+bool DrawValidator::CheckDraw(DeviceContext& ctx, const DrawArgs& args, const char* call, std::vector<UnboundRead>& unbound, uint32_t recheck) {
   const PipelineState& s = *ctx.state_;
+  auto changed = [&](uint32_t bits) { return (recheck & bits) != 0; };
   Checker c{ctx, s, call, unbound, DeviceAccess::StrictUnboundResources(*ctx.GetDevice())};
   const Shader* vs = s.stage(ShaderStage::Vertex).shader.get();
   if (!vs) Fail(ErrorId::DRAW_STATE_INVALID, call, "pipeline", "no vertex shader is bound (VSSetShader)");
@@ -207,7 +208,9 @@ bool DrawValidator::CheckDraw(DeviceContext& ctx, const DrawArgs& args, const ch
 
   // Input assembler
   bool needsLayout = false;
-  for (const SignatureElement& in : vs->Reflection().inputs) needsLayout |= !in.systemValue;
+  if (changed(DIRTY_SHADERS | DIRTY_INPUT_LAYOUT | DIRTY_VERTEX_BUFFERS)) {
+    for (const SignatureElement& in : vs->Reflection().inputs) needsLayout |= !in.systemValue;
+  }
   if (needsLayout) {
     if (!s.inputLayout) Fail(ErrorId::DRAW_STATE_INVALID, call, Describe(vs), "the vertex shader has vertex inputs but no input layout is set (IASetInputLayout)");
     for (const SignatureElement& in : vs->Reflection().inputs) {
@@ -228,7 +231,7 @@ bool DrawValidator::CheckDraw(DeviceContext& ctx, const DrawArgs& args, const ch
 
   // Shader interface: what the pixel shader reads must be written by the vertex shader.
   const Shader* ps = s.stage(ShaderStage::Pixel).shader.get();
-  if (ps) {
+  if (ps && changed(DIRTY_SHADERS)) {
     for (const SignatureElement& in : ps->Reflection().inputs) {
       if (in.systemValue) continue;
       const SignatureElement* out = nullptr;
@@ -244,8 +247,9 @@ bool DrawValidator::CheckDraw(DeviceContext& ctx, const DrawArgs& args, const ch
                  "; declare the vertex output and pixel input with the same members in the same order (a shared struct)");
     }
   }
-  c.checkStage(ShaderStage::Vertex);
-  c.checkStage(ShaderStage::Pixel);
+  if (changed(DIRTY_BINDINGS_VS)) c.checkStage(ShaderStage::Vertex);
+  if (changed(DIRTY_BINDINGS_PS | DIRTY_PIXEL_UAVS)) c.checkStage(ShaderStage::Pixel);
+  if (!changed(DIRTY_SHADERS | DIRTY_RENDER_TARGETS)) return !c.warned;
 
   // D3D11 renders an out-of-range SV_RenderTargetArrayIndex into slice 0; Vulkan leaves a layer
   // at or past the framebuffer's layer count undefined and GL ignores the index on a single-layer

@@ -318,16 +318,18 @@ constexpr uint32_t kComputeInputs = DIRTY_BINDINGS_CS | DIRTY_COMPUTE_UAVS;
 constexpr uint32_t kDrawInputs = DIRTY_ALL & ~kComputeInputs;
 }  // namespace
 
-// A draw's validation depends only on the bound state and on whether it is indexed, so a draw
-// after one that passed with nothing unbound and no warning, with no state changed since (no
-// dirty bit), passes too: per-draw constant updates (Map, UpdateSubresource) change contents,
-// never bindings. Recording it here is what keeps the per-draw cost near a raw API's.
+// A draw's validation depends only on the bound state and on whether it is indexed, so after a
+// draw that passed with nothing unbound and no warning, only the rules reading state that changed
+// since (its dirty bits) run again, and none when nothing changed: per-draw constant updates
+// (Map, UpdateSubresource) change contents, never bindings. This keeps the per-draw cost near a
+// raw API's.
 void DeviceContext::DoDraw(const detail::DrawArgs& args, const char* call) {
   const bool indexed = args.kind == detail::DrawArgs::DrawIndexed || args.kind == detail::DrawArgs::DrawIndexedInstancedIndirect;
   const uint8_t kind = indexed ? 2 : 1;
   std::vector<UnboundRead> unbound;
   bool repeatable = true;
-  if ((dirty_ & kDrawInputs) || validDraw_ != kind) repeatable = DrawValidator::CheckDraw(*this, args, call, unbound);
+  const uint32_t recheck = validDraw_ == kind ? dirty_ & kDrawInputs : uint32_t(DIRTY_ALL);
+  if (recheck) repeatable = DrawValidator::CheckDraw(*this, args, call, unbound, recheck);
   // D3D11 rasterizes nothing into a viewport of zero width or height (Vulkan forbids one; none set
   // at all is refused by the validator above). The state stays dirty for the next draw.
   const VIEWPORT& vp = state_->viewports[0];

@@ -199,6 +199,64 @@ TEST_P(RepeatedDrawValidationTest, AChangeAfterADrawThatPassedIsCheckedAgain) {
   ctx().CSSetUnorderedAccessViews(0, {nullptr});
 }
 
+// After a draw that passed, only the rules reading what changed run again: each kind of change
+// still finds its error (vertex input, shader interface, render-target kind, scissor).
+TEST_P(RepeatedDrawValidationTest, EachKindOfChangeIsCheckedAgain) {
+  Target t = MakeTarget(device(), 8, 8, FORMAT_R8G8B8A8_UNORM);
+  Target uintTarget = MakeTarget(device(), 8, 8, FORMAT_R8G8B8A8_UINT);
+  const char* vsSource = R"(
+struct V { float4 p : SV_Position; float4 c : COLOR0; };
+V main(float2 p : POSITION) { V v; v.p = float4(p, 0.5, 1.0); v.c = 1; return v; }
+)";
+  ShaderBytecode vsCode = CompileHlsl(vsSource, "vs_5_0", "main");
+  Ref<VertexShader> vs = device().CreateVertexShader(vsCode);
+  Ref<PixelShader> ps = device().CreatePixelShader(CompileHlsl(R"(
+float4 main(float4 p : SV_Position, float4 c : COLOR0) : SV_Target { return c; }
+)",
+                                                               "ps_5_0", "main"));
+  Ref<PixelShader> psTexcoord = device().CreatePixelShader(CompileHlsl(R"(
+float4 main(float4 p : SV_Position, float2 uv : TEXCOORD0) : SV_Target { return float4(uv, 0, 1); }
+)",
+                                                                       "ps_5_0", "main"));
+  INPUT_ELEMENT_DESC el[] = {{"POSITION", 0, FORMAT_R32G32_FLOAT, 0, 0, INPUT_PER_VERTEX_DATA, 0}};
+  Ref<InputLayout> layout = device().CreateInputLayout(el, 1, vsCode);
+  const float quad[8] = {-1, 1, 1, 1, -1, -1, 1, -1};
+  Ref<Buffer> vb = MakeBuffer(device(), BIND_VERTEX_BUFFER, quad, sizeof(quad));
+  RASTERIZER_DESC rd;
+  rd.ScissorEnable = true;
+  Ref<RasterizerState> scissored = device().CreateRasterizerState(rd);
+  RenderTargetView* rtvs[] = {t.rtv.get()};
+  RenderTargetView* uintRtvs[] = {uintTarget.rtv.get()};
+  Buffer* vbs[] = {vb.get()};
+  Buffer* noVbs[] = {nullptr};
+  uint32_t stride = 8, offset = 0;
+  ctx().OMSetRenderTargets(1, rtvs, nullptr);
+  SetViewport(ctx(), 8, 8);
+  ctx().IASetPrimitiveTopology(PRIMITIVE_TOPOLOGY_TRIANGLESTRIP);
+  ctx().IASetInputLayout(layout.get());
+  ctx().IASetVertexBuffers(0, 1, vbs, &stride, &offset);
+  ctx().VSSetShader(vs.get());
+  ctx().PSSetShader(ps.get());
+  auto draw = [&] { return ErrorOf([&] { ctx().Draw(4, 0); }); };
+  EXPECT_EQ(draw(), std::nullopt);
+  ctx().IASetVertexBuffers(0, 1, noVbs, &stride, &offset);
+  EXPECT_EQ(draw(), ErrorId::DRAW_STATE_INVALID);
+  ctx().IASetVertexBuffers(0, 1, vbs, &stride, &offset);
+  EXPECT_EQ(draw(), std::nullopt);
+  ctx().PSSetShader(psTexcoord.get());
+  EXPECT_EQ(draw(), ErrorId::SHADER_INTERFACE_MISMATCH);
+  ctx().PSSetShader(ps.get());
+  EXPECT_EQ(draw(), std::nullopt);
+  ctx().OMSetRenderTargets(1, uintRtvs, nullptr);
+  EXPECT_EQ(draw(), ErrorId::RESOURCE_TYPE_MISMATCH);
+  ctx().OMSetRenderTargets(1, rtvs, nullptr);
+  EXPECT_EQ(draw(), std::nullopt);
+  ctx().RSSetState(scissored.get());
+  EXPECT_EQ(draw(), ErrorId::DRAW_STATE_INVALID);
+  ctx().RSSetState(nullptr);
+  EXPECT_EQ(draw(), std::nullopt);
+}
+
 // D3D11 warns at every draw that reads past the end of a too-small cbuffer, repeated draws too.
 TEST_P(RepeatedDrawValidationTest, ATooSmallCbufferWarnsAtEveryDraw) {
   std::vector<std::string> warnings;
