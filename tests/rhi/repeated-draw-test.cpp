@@ -49,6 +49,16 @@ void WriteDiscard(DeviceContext& ctx, Buffer* b, const float (&v)[4]) {
   ctx.Unmap(b, 0);
 }
 
+// The fixed part of every pass here: one target, its viewport, strips, the two shaders.
+void BindPass(DeviceContext& ctx, const Target& t, uint32_t w, uint32_t h, VertexShader* vs, PixelShader* ps) {
+  RenderTargetView* rtvs[] = {t.rtv.get()};
+  ctx.OMSetRenderTargets(1, rtvs, nullptr);
+  SetViewport(ctx, float(w), float(h));
+  ctx.IASetPrimitiveTopology(PRIMITIVE_TOPOLOGY_TRIANGLESTRIP);
+  ctx.VSSetShader(vs);
+  ctx.PSSetShader(ps);
+}
+
 TEST_P(RepeatedDrawTest, EveryDrawSeesTheBuffersWrittenBeforeItWithNothingRebound) {
   const uint32_t W = 32, H = 4;
   Target t = MakeTarget(device(), W, H, FORMAT_R32G32B32A32_FLOAT);
@@ -60,12 +70,7 @@ TEST_P(RepeatedDrawTest, EveryDrawSeesTheBuffersWrittenBeforeItWithNothingReboun
   float color[4] = {0, 0, 0, 1}, extra[4] = {0, 0, 0, 0};
   WriteDiscard(ctx(), cb.get(), color);
   WriteDiscard(ctx(), sb.get(), extra);
-  RenderTargetView* rtvs[] = {t.rtv.get()};
-  ctx().OMSetRenderTargets(1, rtvs, nullptr);
-  SetViewport(ctx(), W, H);
-  ctx().IASetPrimitiveTopology(PRIMITIVE_TOPOLOGY_TRIANGLESTRIP);
-  ctx().VSSetShader(vs.get());
-  ctx().PSSetShader(ps.get());
+  BindPass(ctx(), t, W, H, vs.get(), ps.get());
   ctx().PSSetConstantBuffers(0, {cb.get()});
   ctx().PSSetShaderResources(0, {srv.get()});
   // Even strips rename only the cbuffer, odd ones only the structured buffer, strip 7 neither.
@@ -117,16 +122,11 @@ float4 main(float4 p : SV_Position) : SV_Target { return color; }
   Ref<InputLayout> layout = device().CreateInputLayout(el, 1, vsCode);
   Ref<Buffer> vb = DynamicBuffer(device(), 32, BIND_VERTEX_BUFFER);
   Ref<Buffer> cb = DynamicBuffer(device(), 16, BIND_CONSTANT_BUFFER);
-  RenderTargetView* rtvs[] = {t.rtv.get()};
-  ctx().OMSetRenderTargets(1, rtvs, nullptr);
-  SetViewport(ctx(), W, H);
-  ctx().IASetPrimitiveTopology(PRIMITIVE_TOPOLOGY_TRIANGLESTRIP);
+  BindPass(ctx(), t, W, H, vs.get(), ps.get());
   ctx().IASetInputLayout(layout.get());
   Buffer* vbs[] = {vb.get()};
   uint32_t stride = 8, offset = 0;
   ctx().IASetVertexBuffers(0, 1, vbs, &stride, &offset);
-  ctx().VSSetShader(vs.get());
-  ctx().PSSetShader(ps.get());
   ctx().PSSetConstantBuffers(0, {cb.get()});
   for (uint32_t i = 0; i < 8; ++i) {
     float x0 = float(i) / 4.0f - 1.0f, x1 = float(i + 1) / 4.0f - 1.0f;
@@ -166,12 +166,7 @@ TEST_P(RepeatedDrawValidationTest, AChangeAfterADrawThatPassedIsCheckedAgain) {
   Ref<Texture2D> uintTex = MakeTexture2D(device(), 4, 4, FORMAT_R8G8B8A8_UINT, BIND_SHADER_RESOURCE);
   Ref<ShaderResourceView> uintSrv = device().CreateShaderResourceView(uintTex.get());
   Ref<SamplerState> smp = device().CreateSamplerState(SAMPLER_DESC{});
-  RenderTargetView* rtvs[] = {t.rtv.get()};
-  ctx().OMSetRenderTargets(1, rtvs, nullptr);
-  SetViewport(ctx(), 8, 8);
-  ctx().IASetPrimitiveTopology(PRIMITIVE_TOPOLOGY_TRIANGLESTRIP);
-  ctx().VSSetShader(vs.get());
-  ctx().PSSetShader(ps.get());
+  BindPass(ctx(), t, 8, 8, vs.get(), ps.get());
   ctx().PSSetShaderResources(0, {srv.get()});
   ctx().PSSetSamplers(0, {smp.get()});
   EXPECT_EQ(ErrorOf([&] { ctx().Draw(4, 0); }), std::nullopt);
@@ -272,12 +267,7 @@ float4 main(float4 p : SV_Position) : SV_Target { return a + b; }
 )",
                                                                "ps_5_0", "main"));
   Ref<Buffer> small = MakeBuffer(device(), BIND_CONSTANT_BUFFER, nullptr, 16);
-  RenderTargetView* rtvs[] = {t.rtv.get()};
-  ctx().OMSetRenderTargets(1, rtvs, nullptr);
-  SetViewport(ctx(), 8, 8);
-  ctx().IASetPrimitiveTopology(PRIMITIVE_TOPOLOGY_TRIANGLESTRIP);
-  ctx().VSSetShader(vs.get());
-  ctx().PSSetShader(ps.get());
+  BindPass(ctx(), t, 8, 8, vs.get(), ps.get());
   ctx().PSSetConstantBuffers(0, {small.get()});
   for (int i = 0; i < 3; ++i) ctx().Draw(4, 0);
   EXPECT_EQ(warnings.size(), 3u);
