@@ -5,7 +5,7 @@ Usage: rhi-instructions.py BENCH_RHI_BINARY [--backend vulkan|gl] [--out DIR]
 
 On a shared machine the CPU time of one case moves by up to 2x between runs (docs/rhi-cost.md), more than
 most changes to the per-draw path. The instructions the benchmark thread executes inside a case's Record()
-barely move with the load, so they show what a change did. The bench runs twice under callgrind (3 and 11
+move far less (docs/rhi-cost.md gives their spread), so a few runs show what a change did. The bench runs twice under callgrind (3 and 11
 iterations, collecting only inside the cases' Record functions, which the two sides of a case implement in
 Sp<Case> and Vk<Case>/Gl<Case> classes); the difference divided by 8 iterations and the case's draws
 removes what happens once (pipeline creation, first use). Instructions are not time: a cache miss or a

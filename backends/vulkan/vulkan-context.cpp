@@ -140,8 +140,7 @@ void VulkanContext::SetDynamicState(const PipelineState& s) {
 
 void VulkanContext::BindVertexBuffers(const PipelineState& s, uint32_t dirty) {
   // Nothing to compare when neither the bindings nor a vertex buffer's memory moved since the last draw.
-  if (vertexBindingsCurrent_ && vertexEpoch_ == vertexRenames_ && !(dirty & (DIRTY_VERTEX_BUFFERS | DIRTY_INPUT_LAYOUT | DIRTY_SHADERS))) return;
-  vertexBindingsCurrent_ = true;
+  if (vertexEpoch_ == vertexRenames_ && !(dirty & (DIRTY_VERTEX_BUFFERS | DIRTY_INPUT_LAYOUT | DIRTY_SHADERS))) return;
   vertexEpoch_ = vertexRenames_;
   // Built in a reused member: this runs for every draw, and a fresh vector was an allocation each.
   decltype(boundVertex_)& want = wantVertex_;
@@ -213,9 +212,8 @@ void VulkanContext::Draw(const PipelineState& s, uint32_t dirty, const detail::D
     currentLayout_ = layout;
   }
 
-  // Sampling support depends on the bindings only: an unchanged stage was checked before.
-  if (dirty & (DIRTY_BINDINGS_VS | DIRTY_RENDER_TARGETS)) CheckSampling(s, ShaderStage::Vertex, vs, call);
-  if (ps && (dirty & (DIRTY_BINDINGS_PS | DIRTY_RENDER_TARGETS))) CheckSampling(s, ShaderStage::Pixel, *ps, call);
+  CheckSampling(s, ShaderStage::Vertex, vs, dirty, call);
+  if (ps) CheckSampling(s, ShaderStage::Pixel, *ps, dirty, call);
   // Everything the draw reads or writes, so the barriers it needs are known before recording.
   TrackStageResources(s, ShaderStage::Vertex, vs);
   if (ps) TrackStageResources(s, ShaderStage::Pixel, *ps);
@@ -317,7 +315,7 @@ void VulkanContext::Dispatch(const PipelineState& s, uint32_t dirty, uint32_t x,
   const VkPhysicalDeviceLimits& lim = dev_->props.limits;
   if (x > lim.maxComputeWorkGroupCount[0] || y > lim.maxComputeWorkGroupCount[1] || z > lim.maxComputeWorkGroupCount[2])
     Throw(ErrorId::NOT_SUPPORTED, call, DescribeObject(cs.owner), "the thread-group count exceeds this device's maxComputeWorkGroupCount");
-  if (dirty & (DIRTY_BINDINGS_CS | DIRTY_COMPUTE_UAVS)) CheckSampling(s, ShaderStage::Compute, cs, call);
+  CheckSampling(s, ShaderStage::Compute, cs, dirty, call);
   VkCommandBuffer cmd = Cmd();
   TrackStageResources(s, ShaderStage::Compute, cs);
   if (argsBuffer) UseBuffer(BufferOf(argsBuffer), access::IndirectArgs());

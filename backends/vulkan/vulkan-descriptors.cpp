@@ -61,7 +61,8 @@ VkImageLayout VulkanContext::SrvLayout(const PipelineState& s, const VkViewObj& 
   return VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL;
 }
 
-void VulkanContext::CheckSampling(const PipelineState& s, ShaderStage stage, const VkShaderObj& sh, const char* call) {
+void VulkanContext::CheckSampling(const PipelineState& s, ShaderStage stage, const VkShaderObj& sh, uint32_t dirty, const char* call) {
+  if (!(dirty & StageInputs(stage))) return;  // depends on the bindings only: an unchanged stage passed before
   const StageBindings& b = s.stage(stage);
   for (const SampledPair& p : sh.sampledPairs) {
     const ShaderResourceView* srv = b.shaderResources[p.textureReg].get();

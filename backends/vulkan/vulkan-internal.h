@@ -556,7 +556,7 @@ class VulkanContext final : public detail::ContextBackend {
   void ResolveDescriptors(const PipelineState& s, ShaderStage stage, const VkShaderObj& sh, std::vector<DescriptorItem>& out, std::vector<uint32_t>& dynamicOffsets,
                           const char* call);
   void TrackStageResources(const PipelineState& s, ShaderStage stage, const VkShaderObj& sh);
-  void CheckSampling(const PipelineState& s, ShaderStage stage, const VkShaderObj& sh, const char* call);
+  void CheckSampling(const PipelineState& s, ShaderStage stage, const VkShaderObj& sh, uint32_t dirty, const char* call);
   // Writes (or finds in the batch's cache) the set holding `items` into sd; true when sd must be
   // bound again (new set, other pipeline layout or new dynamic offsets). Swaps `items` and
   // `dynamicOffsets` out.
@@ -649,8 +649,7 @@ class VulkanContext final : public detail::ContextBackend {
   std::vector<uint32_t> bindOffsets_;  // both graphics sets' dynamic offsets, for one bind call
   uint64_t viewRenames_ = 1;           // renames of buffers views may read (Rename): ranges in sets moved
   uint64_t vertexRenames_ = 1;         // renames of vertex and index buffers
-  bool vertexBindingsCurrent_ = false; // boundVertex_ holds this batch's binding as of vertexEpoch_
-  uint64_t vertexEpoch_ = 0;
+  uint64_t vertexEpoch_ = 0;           // vertexRenames_ when boundVertex_ was resolved; 0: not in this batch
   std::array<std::array<RepackedConstants, COMMONSHADER_CONSTANT_BUFFER_API_SLOT_COUNT>, SHADER_STAGE_COUNT> repacked_{};
   std::vector<VkQueryObj*> activeQueries_;
   std::shared_ptr<QuerySegment> segment_;  // the occlusion query running now

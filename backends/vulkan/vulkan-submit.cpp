@@ -90,7 +90,7 @@ void VulkanContext::ResetCommandBufferState() {
   setCache_.clear();  // its sets come from the previous batch's pools
   dynamicStateValid_ = false;
   boundVertex_.clear();
-  vertexBindingsCurrent_ = false;
+  vertexEpoch_ = 0;
   boundIndex_ = {};
   chunk_ = {};
   chunkUsed_ = 0;
