@@ -121,7 +121,7 @@ void GLContext::ApplyFramebuffer(const PipelineState& s) {
   BindDrawFramebuffer(Framebuffer(key, "Draw"));
 }
 
-void GLContext::ApplyInput(const PipelineState& s, bool indexed) {
+void GLContext::ApplyInput(const PipelineState& s) {
   const ShaderReflection& vs = s.stage(ShaderStage::Vertex).shader->Reflection();
   std::array<bool, kMaxAttribs> wanted{};
   if (s.inputLayout) {
@@ -149,10 +149,6 @@ void GLContext::ApplyInput(const PipelineState& s, bool indexed) {
   }
   for (GLuint i = 0; i < kMaxAttribs; ++i)
     SetCached(cache_.attribEnabled[i], wanted[i], [&] { wanted[i] ? glEnableVertexArrayAttrib(vao_, i) : glDisableVertexArrayAttrib(vao_, i); });
-  if (indexed) {
-    GLuint ib = GL(s.indexBuffer.get()).name;
-    SetCached(cache_.elementBuffer, ib, [&] { glVertexArrayElementBuffer(vao_, ib); });
-  }
 }
 
 // Indirect indexed draws have no byte offset for the index buffer: the indices from the
@@ -171,19 +167,27 @@ GLuint GLContext::IndexScratch(const PipelineState& s) {
   return indexScratch_;
 }
 
-// The core's dirty bits are not needed: every piece of state is compared with the cache of what
-// GL has, which also covers state that clears, copies and resolves changed in between.
+// Each group of fixed-function state is applied when the core marked what it reads as changed, or
+// when the context itself changed that GL state since (a clear, a dispatch, a deleted object:
+// `disturbed_`); within a group the cache still drops calls that would set what GL already has.
+// The stage bindings are compared every draw: the upload ring can move under them.
 void GLContext::Draw(const PipelineState& s, uint32_t dirty, const detail::DrawArgs& a) {
   dev_.MakeCurrent();
   const bool indexed = a.kind == detail::DrawArgs::DrawIndexed || a.kind == detail::DrawArgs::DrawIndexedInstancedIndirect;
-  const bool hasPixelShader = s.stage(ShaderStage::Pixel).shader != nullptr;
-  ApplyProgram(s);
-  ApplyFramebuffer(s);
-  ApplyInput(s, indexed);
-  ApplyRasterizer(s);
-  ApplyViewports(s);
-  ApplyDepthStencil(s);
-  ApplyBlend(s, hasPixelShader);
+  const uint32_t apply = dirty | disturbed_;
+  auto changed = [&](uint32_t reads) { return (apply & reads) != 0; };
+  if (changed(DIRTY_SHADERS | DIRTY_BLEND)) ApplyProgram(s);  // blend: dual-source variants
+  if (changed(DIRTY_RENDER_TARGETS | DIRTY_VIEWPORTS)) ApplyFramebuffer(s);  // viewports: size without attachments
+  if (changed(DIRTY_SHADERS | DIRTY_INPUT_LAYOUT | DIRTY_VERTEX_BUFFERS)) ApplyInput(s);
+  if (indexed) {
+    GLuint ib = GL(s.indexBuffer.get()).name;
+    SetCached(cache_.elementBuffer, ib, [&] { glVertexArrayElementBuffer(vao_, ib); });
+  }
+  if (changed(DIRTY_RASTERIZER | DIRTY_RENDER_TARGETS)) ApplyRasterizer(s);  // targets: bias units
+  if (changed(DIRTY_VIEWPORTS | DIRTY_RASTERIZER)) ApplyViewports(s);  // rasterizer: scissor enable
+  if (changed(DIRTY_DEPTH_STENCIL | DIRTY_RENDER_TARGETS)) ApplyDepthStencil(s);  // targets: read-only DSV
+  if (changed(DIRTY_BLEND | DIRTY_RENDER_TARGETS | DIRTY_SHADERS)) ApplyBlend(s, s.stage(ShaderStage::Pixel).shader != nullptr);
+  disturbed_ = 0;
 
   GLbitfield barrier = 0;
   for (int pass = 0; pass < 2; ++pass) {
@@ -226,7 +230,10 @@ void GLContext::Draw(const PipelineState& s, uint32_t dirty, const detail::DrawA
 void GLContext::Dispatch(const PipelineState& s, uint32_t dirty, uint32_t x, uint32_t y, uint32_t z, Buffer* args, uint32_t argsOffset) {
   dev_.MakeCurrent();
   GLShader& cs = detail::BackendAs<GLShader>(s.stage(ShaderStage::Compute).shader);
-  SetCached(cache_.pipeline, cs.computePipeline, [&] { glBindProgramPipeline(cs.computePipeline); });
+  SetCached(cache_.pipeline, cs.computePipeline, [&] {
+    glBindProgramPipeline(cs.computePipeline);
+    disturbed_ |= DIRTY_SHADERS;
+  });
   GLbitfield barrier = 0;
   for (int pass = 0; pass < 2; ++pass) {
     uint64_t generation = ringGeneration_;
@@ -370,6 +377,7 @@ GLintptr GLContext::UploadToRing(const void* data, size_t size) {
 // ---------------------------------------------------------------------------------------------
 
 void GLContext::ForgetTexture(GLuint name) {
+  disturbed_ = DIRTY_ALL;
   ForgetIf(cache_.textures, [&](GLuint t) { return t == name; });
   ForgetIf(cache_.images, [&](const ImageBinding& b) { return b.texture == name; });
   for (auto it = framebuffers_.begin(); it != framebuffers_.end();) {
@@ -387,15 +395,20 @@ void GLContext::ForgetTexture(GLuint name) {
 }
 
 void GLContext::ForgetBuffer(GLuint name) {
+  disturbed_ = DIRTY_ALL;
   ForgetIf(cache_.uniformBuffers, [&](const RangeBinding& r) { return r.buffer == name; });
   ForgetIf(cache_.storageBuffers, [&](const RangeBinding& r) { return r.buffer == name; });
   ForgetIf(cache_.vertexBindings, [&](const VertexBinding& v) { return v.buffer == name; });
   if (cache_.elementBuffer == name) cache_.elementBuffer.reset();
 }
 
-void GLContext::ForgetSampler(GLuint name) { ForgetIf(cache_.samplers, [&](GLuint s) { return s == name; }); }
+void GLContext::ForgetSampler(GLuint name) {
+  disturbed_ = DIRTY_ALL;
+  ForgetIf(cache_.samplers, [&](GLuint s) { return s == name; });
+}
 
 void GLContext::ForgetProgram(GLuint name) {
+  disturbed_ = DIRTY_ALL;
   for (auto it = pipelines_.begin(); it != pipelines_.end();) {
     if (it->first.first != name && it->first.second != name) {
       ++it;
@@ -408,6 +421,7 @@ void GLContext::ForgetProgram(GLuint name) {
 }
 
 void GLContext::ForgetPipeline(GLuint name) {
+  disturbed_ = DIRTY_ALL;
   if (cache_.pipeline == name) cache_.pipeline.reset();
 }
 

@@ -181,7 +181,7 @@ class GLContext final : public detail::ContextBackend {
   // gl-context.cpp
   void ApplyProgram(const PipelineState& s);
   void ApplyFramebuffer(const PipelineState& s);
-  void ApplyInput(const PipelineState& s, bool indexed);
+  void ApplyInput(const PipelineState& s);
   GLbitfield BindStage(const PipelineState& s, ShaderStage stage);
   void BindUniformBlock(const Shader& shader, size_t bindingIndex, const Buffer* buffer);
   void BindRange(GLenum target, GLuint index, const RangeBinding& r);
@@ -190,6 +190,9 @@ class GLContext final : public detail::ContextBackend {
 
   GLDevice& dev_;
   GLStateCache cache_;
+  // Groups of draw state (in the core's dirty bits) whose GL state the context changed itself
+  // since the last draw: clears, the swap chain's blit, compute, objects deleted from the cache.
+  uint32_t disturbed_ = detail::DIRTY_ALL;
   GLuint vao_ = 0;
   GLuint loadSampler_ = 0;  // point sampler for Load/texelFetch and MS textures
   std::map<FramebufferKey, GLuint> framebuffers_;

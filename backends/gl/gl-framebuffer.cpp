@@ -66,7 +66,10 @@ GLuint GLContext::Framebuffer(const FramebufferKey& key, const char* call) {
 }
 
 void GLContext::BindDrawFramebuffer(GLuint fbo) {
-  SetCached(cache_.drawFramebuffer, fbo, [&] { glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo); });
+  SetCached(cache_.drawFramebuffer, fbo, [&] {
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
+    disturbed_ |= DIRTY_RENDER_TARGETS;
+  });
 }
 
 void GLContext::BindReadFramebuffer(GLuint fbo) {

@@ -167,21 +167,31 @@ void GLContext::ApplyBlend(const PipelineState& s, bool hasPixelShader) {
 }
 
 void GLContext::SetScissorTest(bool enabled) {
-  SetCached(cache_.scissorTest, enabled, [&] { Toggle(GL_SCISSOR_TEST, enabled); });
+  SetCached(cache_.scissorTest, enabled, [&] {
+    Toggle(GL_SCISSOR_TEST, enabled);
+    disturbed_ |= DIRTY_RASTERIZER;
+  });
 }
 
 void GLContext::SetColorMask(uint32_t i, uint8_t m) {
-  SetCached(cache_.colorMasks[i], m, [&] { glColorMaski(i, (m & 1) != 0, (m & 2) != 0, (m & 4) != 0, (m & 8) != 0); });
+  SetCached(cache_.colorMasks[i], m, [&] {
+    glColorMaski(i, (m & 1) != 0, (m & 2) != 0, (m & 4) != 0, (m & 8) != 0);
+    disturbed_ |= DIRTY_BLEND;
+  });
 }
 
 void GLContext::SetDepthMask(bool write) {
-  SetCached(cache_.depthMask, write, [&] { glDepthMask(write ? GL_TRUE : GL_FALSE); });
+  SetCached(cache_.depthMask, write, [&] {
+    glDepthMask(write ? GL_TRUE : GL_FALSE);
+    disturbed_ |= DIRTY_DEPTH_STENCIL;
+  });
 }
 
 void GLContext::SetStencilWriteMask(GLuint mask) {
   bool known = cache_.stencil[0] && cache_.stencil[1] && cache_.stencil[0]->writeMask == mask && cache_.stencil[1]->writeMask == mask;
   if (known) return;
   glStencilMaskSeparate(GL_FRONT_AND_BACK, mask);
+  disturbed_ |= DIRTY_DEPTH_STENCIL;
   for (auto& f : cache_.stencil)
     if (f) f->writeMask = mask;
 }

@@ -144,6 +144,93 @@ float4 main(float4 p : SV_Position) : SV_Target { return color; }
     for (uint32_t x = 0; x < W; ++x) ASSERT_EQ(px[(y * W + x) * 4], float(x / 4 + 1)) << "pixel " << x << "," << y;
 }
 
+// Work between draws changes GL state behind the pipeline state: a depth clear binds a
+// framebuffer and switches depth writes on, a resolve switches the scissor test off and opens the
+// colour mask, a dispatch binds a compute program. A draw with nothing rebound still draws with its
+// own state. Strips 0-3 lie inside the scissor; each strip is drawn three times (after the clear,
+// the resolve, the dispatch) with additive blending, red and green only, depth test LESS without
+// depth writes after its depth was cleared to 1: (3, 3, 0, 0) inside, untouched outside.
+TEST_P(RepeatedDrawTest, WorkBetweenDrawsDoesNotChangeTheNextDrawsState) {
+  const uint32_t W = 32, H = 4;
+  const FORMAT rgba32 = FORMAT_R32G32B32A32_FLOAT;
+  Target t = MakeTarget(device(), W, H, rgba32);
+  Ref<Texture2D> depth = MakeTexture2D(device(), W, H, FORMAT_D32_FLOAT, BIND_DEPTH_STENCIL);
+  Ref<DepthStencilView> dsv = device().CreateDepthStencilView(depth.get());
+  Ref<Texture2D> ms = MakeTexture2D(device(), W, H, rgba32, BIND_RENDER_TARGET, nullptr, 1, 1, 4);
+  Ref<Texture2D> resolved = MakeTexture2D(device(), W, H, rgba32, 0);
+  Ref<VertexShader> vs = device().CreateVertexShader(CompileHlsl(kStripVS, "vs_5_0", "main"));
+  Ref<PixelShader> ps = device().CreatePixelShader(CompileHlsl(R"(
+float4 main(float4 p : SV_Position) : SV_Target { return float4(1, 1, 1, 1); }
+)",
+                                                               "ps_5_0", "main"));
+  Ref<ComputeShader> cs = device().CreateComputeShader(CompileHlsl(kFillCS, "cs_5_0", "main"));
+  UavBuffer u = MakeUavBuffer(device(), 1, 4);
+  RASTERIZER_DESC rd;
+  rd.ScissorEnable = true;
+  Ref<RasterizerState> scissored = device().CreateRasterizerState(rd);
+  DEPTH_STENCIL_DESC dd;
+  dd.DepthWriteMask = DEPTH_WRITE_MASK_ZERO;
+  Ref<DepthStencilState> noWrite = device().CreateDepthStencilState(dd);
+  BLEND_DESC bd;
+  bd.RenderTarget[0] = {true, BLEND_ONE, BLEND_ONE, BLEND_OP_ADD, BLEND_ONE, BLEND_ONE, BLEND_OP_ADD, COLOR_WRITE_ENABLE_RED | COLOR_WRITE_ENABLE_GREEN};
+  Ref<BlendState> add = device().CreateBlendState(bd);
+  const float zero[4] = {0, 0, 0, 0};
+  ctx().ClearRenderTargetView(t.rtv.get(), zero);
+  RenderTargetView* rtvs[] = {t.rtv.get()};
+  ctx().OMSetRenderTargets(1, rtvs, dsv.get());
+  SetViewport(ctx(), float(W), float(H));
+  const RECT inside{0, 0, int32_t(W / 2), int32_t(H)};
+  ctx().RSSetScissorRects(1, &inside);
+  ctx().RSSetState(scissored.get());
+  ctx().OMSetDepthStencilState(noWrite.get(), 0);
+  ctx().OMSetBlendState(add.get(), nullptr, 0xffffffffu);
+  ctx().IASetPrimitiveTopology(PRIMITIVE_TOPOLOGY_TRIANGLESTRIP);
+  ctx().VSSetShader(vs.get());
+  ctx().PSSetShader(ps.get());
+  ctx().CSSetShader(cs.get());
+  ctx().CSSetUnorderedAccessViews(0, {u.uav.get()});
+  for (uint32_t i = 0; i < 8; ++i) {
+    ctx().ClearDepthStencilView(dsv.get(), CLEAR_DEPTH, 1.0f, 0);
+    ctx().Draw(4, 4 * i);
+    ctx().ResolveSubresource(resolved.get(), 0, ms.get(), 0, rgba32);
+    ctx().Draw(4, 4 * i);
+    ctx().Dispatch(1, 1, 1);
+    ctx().Draw(4, 4 * i);
+  }
+  std::vector<float> px = ReadTextureAs<float>(device(), ctx(), t.texture.get());
+  for (uint32_t y = 0; y < H; ++y)
+    for (uint32_t x = 0; x < W; ++x) {
+      const float v = x < W / 2 ? 3.0f : 0.0f;
+      const float want[4] = {v, v, 0, 0};
+      for (uint32_t c = 0; c < 4; ++c) ASSERT_EQ(px[(y * W + x) * 4 + c], want[c]) << "pixel " << x << "," << y << " channel " << c;
+    }
+  EXPECT_EQ(ReadBufferAs<uint32_t>(device(), ctx(), u.buffer.get())[0], 7u);
+}
+
+// A depth-only pass (a shadow map's): the clear binds the pass's own framebuffer, so only the depth
+// write mask it switched on differs. Drawn with depth writes off, the depth stays at the cleared 1.
+TEST_P(RepeatedDrawTest, ADepthClearDoesNotTurnDepthWritesOnForTheNextDraw) {
+  const uint32_t W = 32, H = 4;
+  Ref<Texture2D> depth = MakeTexture2D(device(), W, H, FORMAT_D32_FLOAT, BIND_DEPTH_STENCIL);
+  Ref<DepthStencilView> dsv = device().CreateDepthStencilView(depth.get());
+  Ref<VertexShader> vs = device().CreateVertexShader(CompileHlsl(kStripVS, "vs_5_0", "main"));
+  DEPTH_STENCIL_DESC dd;
+  dd.DepthWriteMask = DEPTH_WRITE_MASK_ZERO;
+  Ref<DepthStencilState> noWrite = device().CreateDepthStencilState(dd);
+  ctx().OMSetRenderTargets(0, nullptr, dsv.get());
+  SetViewport(ctx(), float(W), float(H));
+  ctx().OMSetDepthStencilState(noWrite.get(), 0);
+  ctx().IASetPrimitiveTopology(PRIMITIVE_TOPOLOGY_TRIANGLESTRIP);
+  ctx().VSSetShader(vs.get());
+  ctx().PSSetShader(nullptr);
+  for (uint32_t i = 0; i < 8; ++i) {
+    ctx().ClearDepthStencilView(dsv.get(), CLEAR_DEPTH, 1.0f, 0);
+    ctx().Draw(4, 4 * i);
+  }
+  std::vector<float> d = ReadTextureAs<float>(device(), ctx(), depth.get());
+  for (uint32_t p = 0; p < W * H; ++p) ASSERT_EQ(d[p], 1.0f) << "pixel " << p % W << "," << p / W;
+}
+
 // The id of the error the call throws, or none.
 template <class F>
 std::optional<ErrorId> ErrorOf(F&& f) {
