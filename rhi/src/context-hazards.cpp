@@ -97,16 +97,23 @@ void detail::ContextHazards::UnbindForOutput(DeviceContext& ctx, const View* out
                                                        " is now bound for output; as in D3D11 it was unbound from " + where);
   };
   const Resource* res = output->GetResource();
-  for (uint32_t st = 0; st < SHADER_STAGE_COUNT; ++st) {
+  // Only slots the resource's bind flags admit can hold it (the Set calls check the flags): this
+  // runs on every output bind, and a UAV-only buffer skips the walks over 6 x 14 cbuffer and 32
+  // vertex-buffer slots.
+  const Buffer* asBuffer = AsBuffer(res);
+  const uint32_t bind = asBuffer ? asBuffer->GetDesc().BindFlags : static_cast<const Texture*>(res)->Shape().bindFlags;
+  const Buffer* cbuffer = bind & BIND_CONSTANT_BUFFER ? asBuffer : nullptr;
+  const Buffer* vertices = bind & (BIND_VERTEX_BUFFER | BIND_INDEX_BUFFER) ? asBuffer : nullptr;
+  for (uint32_t st = 0; st < SHADER_STAGE_COUNT && (bind & (BIND_SHADER_RESOURCE | BIND_CONSTANT_BUFFER)); ++st) {
     StageBindings& b = s.stages[st];
-    for (uint32_t i = 0; i < b.shaderResourceEnd; ++i) {
+    for (uint32_t i = 0; i < b.shaderResourceEnd && (bind & BIND_SHADER_RESOURCE); ++i) {
       if (b.shaderResources[i] && Overlaps(output, b.shaderResources[i]->GetResource(), b.shaderResources[i]->Range())) {
         b.shaderResources[i].reset();
         ctx.dirty_ |= DIRTY_BINDINGS_VS << st;
         warn(SlotName(ShaderStage(st), 't', i));
       }
     }
-    if (const Buffer* buf = AsBuffer(res)) {
+    if (const Buffer* buf = cbuffer) {
       for (uint32_t i = 0; i < COMMONSHADER_CONSTANT_BUFFER_API_SLOT_COUNT; ++i) {
         if (b.constantBuffers[i].get() == buf && Overlaps(output, buf, WholeBuffer(buf))) {
           b.constantBuffers[i].reset();
@@ -116,7 +123,7 @@ void detail::ContextHazards::UnbindForOutput(DeviceContext& ctx, const View* out
       }
     }
   }
-  if (const Buffer* buf = AsBuffer(res)) {
+  if (const Buffer* buf = vertices) {
     for (uint32_t i = 0; i < IA_VERTEX_INPUT_RESOURCE_SLOT_COUNT; ++i) {
       if (s.vertexBuffers[i].get() == buf && Overlaps(output, buf, WholeBuffer(buf))) {
         s.vertexBuffers[i].reset();
