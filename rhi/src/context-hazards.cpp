@@ -97,33 +97,23 @@ void detail::ContextHazards::UnbindForOutput(DeviceContext& ctx, const View* out
                                                        " is now bound for output; as in D3D11 it was unbound from " + where);
   };
   const Resource* res = output->GetResource();
-  // Only slots the resource's bind flags admit can hold it (the Set calls check the flags): this
-  // runs on every output bind, and a UAV-only buffer skips the walks over 6 x 14 cbuffer and 32
-  // vertex-buffer slots.
+  // Only slots the resource's bind flags admit can hold it (the Set calls and view creation check
+  // the flags): this runs on every output bind, and most outputs are never vertex or index buffers.
+  // Constant buffers need no walk: BIND_CONSTANT_BUFFER admits no other flag (CreateBuffer), so a
+  // constant buffer is never bound for output.
   const Buffer* asBuffer = AsBuffer(res);
   const uint32_t bind = asBuffer ? asBuffer->GetDesc().BindFlags : static_cast<const Texture*>(res)->Shape().bindFlags;
-  const Buffer* cbuffer = bind & BIND_CONSTANT_BUFFER ? asBuffer : nullptr;
-  const Buffer* vertices = bind & (BIND_VERTEX_BUFFER | BIND_INDEX_BUFFER) ? asBuffer : nullptr;
-  for (uint32_t st = 0; st < SHADER_STAGE_COUNT && (bind & (BIND_SHADER_RESOURCE | BIND_CONSTANT_BUFFER)); ++st) {
+  for (uint32_t st = 0; st < SHADER_STAGE_COUNT && (bind & BIND_SHADER_RESOURCE); ++st) {
     StageBindings& b = s.stages[st];
-    for (uint32_t i = 0; i < b.shaderResourceEnd && (bind & BIND_SHADER_RESOURCE); ++i) {
+    for (uint32_t i = 0; i < b.shaderResourceEnd; ++i) {
       if (b.shaderResources[i] && Overlaps(output, b.shaderResources[i]->GetResource(), b.shaderResources[i]->Range())) {
         b.shaderResources[i].reset();
         ctx.dirty_ |= DIRTY_BINDINGS_VS << st;
         warn(SlotName(ShaderStage(st), 't', i));
       }
     }
-    if (const Buffer* buf = cbuffer) {
-      for (uint32_t i = 0; i < COMMONSHADER_CONSTANT_BUFFER_API_SLOT_COUNT; ++i) {
-        if (b.constantBuffers[i].get() == buf && Overlaps(output, buf, WholeBuffer(buf))) {
-          b.constantBuffers[i].reset();
-          ctx.dirty_ |= DIRTY_BINDINGS_VS << st;
-          warn(SlotName(ShaderStage(st), 'b', i));
-        }
-      }
-    }
   }
-  if (const Buffer* buf = vertices) {
+  if (const Buffer* buf = bind & (BIND_VERTEX_BUFFER | BIND_INDEX_BUFFER) ? asBuffer : nullptr) {
     for (uint32_t i = 0; i < IA_VERTEX_INPUT_RESOURCE_SLOT_COUNT; ++i) {
       if (s.vertexBuffers[i].get() == buf && Overlaps(output, buf, WholeBuffer(buf))) {
         s.vertexBuffers[i].reset();

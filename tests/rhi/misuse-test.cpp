@@ -50,6 +50,48 @@ TEST_P(MisuseTest, HazardUnbindsInputWhenBoundForOutput) {
   EXPECT_EQ(boundAt(0), dsrv);
 }
 
+// A raw buffer may be a vertex buffer, an index buffer and a shader resource at once: binding it
+// as a compute UAV unbinds it from each of those slots, with a warning naming each.
+TEST_P(MisuseTest, BindingABufferAsUavUnbindsItsVertexIndexAndShaderResourceSlots) {
+  std::vector<std::string> warnings;
+  device().SetMessageCallback([&](MessageSeverity s, std::string_view t) {
+    if (s == MessageSeverity::Warning) warnings.emplace_back(t);
+    if (s == MessageSeverity::Error) validationMessages.emplace_back(t);
+  });
+  Ref<Buffer> buf = MakeBuffer(device(), BIND_VERTEX_BUFFER | BIND_INDEX_BUFFER | BIND_SHADER_RESOURCE | BIND_UNORDERED_ACCESS, nullptr, 64,
+                               RESOURCE_MISC_BUFFER_ALLOW_RAW_VIEWS);
+  SHADER_RESOURCE_VIEW_DESC sd;
+  sd.Format = FORMAT_R32_TYPELESS;
+  sd.ViewDimension = SRV_DIMENSION_BUFFEREX;
+  sd.BufferEx = {0, 16, BUFFEREX_SRV_FLAG_RAW};
+  Ref<ShaderResourceView> srv = device().CreateShaderResourceView(buf.get(), &sd);
+  UNORDERED_ACCESS_VIEW_DESC ud;
+  ud.Format = FORMAT_R32_TYPELESS;
+  ud.ViewDimension = UAV_DIMENSION_BUFFER;
+  ud.Buffer = {0, 16, BUFFER_UAV_FLAG_RAW};
+  Ref<UnorderedAccessView> uav = device().CreateUnorderedAccessView(buf.get(), &ud);
+  Buffer* vbs[] = {buf.get()};
+  uint32_t stride = 16, offset = 0;
+  ctx().IASetVertexBuffers(3, 1, vbs, &stride, &offset);
+  ctx().IASetIndexBuffer(buf.get(), FORMAT_R32_UINT, 0);
+  ctx().VSSetShaderResources(5, {srv.get()});
+  ctx().CSSetUnorderedAccessViews(0, {uav.get()});
+  Ref<Buffer> vb, ib;
+  Ref<ShaderResourceView> view;
+  uint32_t gotStride = 0, gotOffset = 0, gotIndexOffset = 0;
+  FORMAT format = FORMAT_UNKNOWN;
+  ctx().IAGetVertexBuffers(3, 1, &vb, &gotStride, &gotOffset);
+  ctx().IAGetIndexBuffer(&ib, &format, &gotIndexOffset);
+  ctx().VSGetShaderResources(5, 1, &view);
+  EXPECT_EQ(vb, nullptr);
+  EXPECT_EQ(ib, nullptr);
+  EXPECT_EQ(view, nullptr);
+  ASSERT_EQ(warnings.size(), 3u);
+  EXPECT_NE(warnings[0].find("VS slot t5"), std::string::npos) << warnings[0];
+  EXPECT_NE(warnings[1].find("vertex buffer slot 3"), std::string::npos) << warnings[1];
+  EXPECT_NE(warnings[2].find("the index buffer"), std::string::npos) << warnings[2];
+}
+
 SP_INSTANTIATE_VALIDATION_TESTS(MisuseTest);
 
 }  // namespace
