@@ -103,7 +103,8 @@ void detail::ContextHazards::UnbindForOutput(DeviceContext& ctx, const View* out
   // constant buffer is never bound for output.
   const Buffer* asBuffer = AsBuffer(res);
   const uint32_t bind = asBuffer ? asBuffer->GetDesc().BindFlags : static_cast<const Texture*>(res)->Shape().bindFlags;
-  for (uint32_t st = 0; st < SHADER_STAGE_COUNT && (bind & BIND_SHADER_RESOURCE); ++st) {
+  const uint32_t stagesWithViews = bind & BIND_SHADER_RESOURCE ? SHADER_STAGE_COUNT : 0;
+  for (uint32_t st = 0; st < stagesWithViews; ++st) {
     StageBindings& b = s.stages[st];
     for (uint32_t i = 0; i < b.shaderResourceEnd; ++i) {
       if (b.shaderResources[i] && Overlaps(output, b.shaderResources[i]->GetResource(), b.shaderResources[i]->Range())) {

@@ -60,15 +60,9 @@ TEST_P(MisuseTest, BindingABufferAsUavUnbindsItsVertexIndexAndShaderResourceSlot
   });
   Ref<Buffer> buf = MakeBuffer(device(), BIND_VERTEX_BUFFER | BIND_INDEX_BUFFER | BIND_SHADER_RESOURCE | BIND_UNORDERED_ACCESS, nullptr, 64,
                                RESOURCE_MISC_BUFFER_ALLOW_RAW_VIEWS);
-  SHADER_RESOURCE_VIEW_DESC sd;
-  sd.Format = FORMAT_R32_TYPELESS;
-  sd.ViewDimension = SRV_DIMENSION_BUFFEREX;
-  sd.BufferEx = {0, 16, BUFFEREX_SRV_FLAG_RAW};
+  const CSHADER_RESOURCE_VIEW_DESC sd(buf.get(), FORMAT_R32_TYPELESS, 0, 16, BUFFEREX_SRV_FLAG_RAW);
   Ref<ShaderResourceView> srv = device().CreateShaderResourceView(buf.get(), &sd);
-  UNORDERED_ACCESS_VIEW_DESC ud;
-  ud.Format = FORMAT_R32_TYPELESS;
-  ud.ViewDimension = UAV_DIMENSION_BUFFER;
-  ud.Buffer = {0, 16, BUFFER_UAV_FLAG_RAW};
+  const CUNORDERED_ACCESS_VIEW_DESC ud(buf.get(), FORMAT_R32_TYPELESS, 0, 16, BUFFER_UAV_FLAG_RAW);
   Ref<UnorderedAccessView> uav = device().CreateUnorderedAccessView(buf.get(), &ud);
   Buffer* vbs[] = {buf.get()};
   uint32_t stride = 16, offset = 0;
