@@ -176,19 +176,26 @@ void VulkanContext::BindVertexBuffers(const PipelineState& s, uint32_t dirty) {
   std::swap(boundVertex_, want);
 }
 
-VkPipeline VulkanContext::CachedGraphicsPipeline(const PipelineState& s, uint64_t vsUid, uint64_t psUid, VkPipelineLayout layout, const char* call) {
+VkPipeline VulkanContext::CachedGraphicsPipeline(const PipelineState& s, uint32_t dirty, uint64_t vsUid, uint64_t psUid, VkPipelineLayout layout,
+                                                 const char* call) {
   auto uid = [](const auto& ref) { return ref ? ref->UniqueId() : uint64_t(0); };
+  constexpr uint64_t kMix = 0x9e3779b97f4a7c15ull;
+  if (!pipelineTargetsValid_ || (dirty & DIRTY_RENDER_TARGETS)) {
+    for (size_t i = 0; i < SIMULTANEOUS_RENDER_TARGET_COUNT; ++i) pipelineTargets_[i] = uid(s.renderTargets[i]);
+    pipelineTargets_[SIMULTANEOUS_RENDER_TARGET_COUNT] = uid(s.depthStencil);
+    pipelineTargetsHash_ = 0;
+    for (uint64_t v : pipelineTargets_) pipelineTargetsHash_ = (pipelineTargetsHash_ ^ v) * kMix;
+    pipelineTargetsValid_ = true;
+  }
   PipelineIdentity id;
   id.objects = {vsUid, psUid, uid(s.inputLayout), uid(s.rasterizerState), uid(s.depthStencilState), uid(s.blendState)};
-  for (size_t i = 0; i < SIMULTANEOUS_RENDER_TARGET_COUNT; ++i) id.targets[i] = uid(s.renderTargets[i]);
-  id.targets[SIMULTANEOUS_RENDER_TARGET_COUNT] = uid(s.depthStencil);
+  id.targets = pipelineTargets_;
   id.layout = layout;
   id.topology = uint32_t(s.topology);
   id.sampleMask = s.sampleMask;
   id.numRenderTargets = s.numRenderTargets;
-  uint64_t h = uint64_t(id.topology) * 31 + id.sampleMask + uint64_t(id.layout);
-  for (uint64_t v : id.objects) h = (h ^ v) * 0x9e3779b97f4a7c15ull;
-  for (uint64_t v : id.targets) h = (h ^ v) * 0x9e3779b97f4a7c15ull;
+  uint64_t h = uint64_t(id.topology) * 31 + id.sampleMask + uint64_t(id.layout) + pipelineTargetsHash_;
+  for (uint64_t v : id.objects) h = (h ^ v) * kMix;
   auto& slot = recentPipelines_[(h >> 32) % recentPipelines_.size()];
   if (slot.second && slot.first == id) return slot.second;
   slot = {id, GraphicsPipeline(s, layout, call)};
@@ -208,7 +215,7 @@ void VulkanContext::Draw(const PipelineState& s, uint32_t dirty, const detail::D
   }
   const uint32_t pipelineBits = DIRTY_SHADERS | DIRTY_INPUT_LAYOUT | DIRTY_RASTERIZER | DIRTY_DEPTH_STENCIL | DIRTY_BLEND | DIRTY_RENDER_TARGETS;
   if ((dirty & pipelineBits) || !currentPipeline_ || currentLayout_ != layout) {
-    currentPipeline_ = CachedGraphicsPipeline(s, vs.uid, shaders.second, layout, call);
+    currentPipeline_ = CachedGraphicsPipeline(s, dirty, vs.uid, shaders.second, layout, call);
     currentLayout_ = layout;
   }
 
@@ -248,18 +255,24 @@ void VulkanContext::Draw(const PipelineState& s, uint32_t dirty, const detail::D
   }
   if (args.argsBuffer) UseBuffer(BufferOf(args.argsBuffer), access::IndirectArgs());
 
-  RenderPassKey key;
-  for (uint32_t i = 0; i < ColorCount(s); ++i)
-    if (s.renderTargets[i]) key.views[i] = s.renderTargets[i]->UniqueId();
-  if (s.depthStencil) {
-    key.views[SIMULTANEOUS_RENDER_TARGET_COUNT] = s.depthStencil->UniqueId();
-    key.dsvFlags = s.depthStencil->GetDesc().Flags;
+  // Our pass is open only if this method opened it (Cmd() closes it for any other command), and
+  // it matched the state of the draw that opened or last checked it; so only a change of targets
+  // or viewports since then can make it the wrong pass.
+  bool restart = !rendering_ || !barriers_.Empty();
+  if (!restart && (dirty & (DIRTY_RENDER_TARGETS | DIRTY_VIEWPORTS))) {
+    RenderPassKey key;
+    for (uint32_t i = 0; i < ColorCount(s); ++i)
+      if (s.renderTargets[i]) key.views[i] = s.renderTargets[i]->UniqueId();
+    if (s.depthStencil) {
+      key.views[SIMULTANEOUS_RENDER_TARGET_COUNT] = s.depthStencil->UniqueId();
+      key.dsvFlags = s.depthStencil->GetDesc().Flags;
+    }
+    bool attachmentless = key.views == RenderPassKey{}.views;
+    const VIEWPORT& vp = s.viewports[0];
+    bool sameArea = !attachmentless || (passExtent_.width >= uint32_t(std::ceil(double(vp.TopLeftX) + vp.Width)) &&
+                                        passExtent_.height >= uint32_t(std::ceil(double(vp.TopLeftY) + vp.Height)));
+    restart = !(attachmentless ? pass_.views == key.views && sameArea : pass_ == key);
   }
-  bool attachmentless = key.views == RenderPassKey{}.views;
-  const VIEWPORT& vp = s.viewports[0];
-  bool sameArea = !attachmentless || (rendering_ && passExtent_.width >= uint32_t(std::ceil(double(vp.TopLeftX) + vp.Width)) &&
-                                      passExtent_.height >= uint32_t(std::ceil(double(vp.TopLeftY) + vp.Height)));
-  bool restart = !rendering_ || !barriers_.Empty() || !(attachmentless ? pass_.views == key.views && sameArea : pass_ == key);
   if (restart) {
     TrackAttachments(s);
     EndRendering();

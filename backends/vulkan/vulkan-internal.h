@@ -574,7 +574,8 @@ class VulkanContext final : public detail::ContextBackend {
   VkImageLayout SrvLayout(const PipelineState& s, const VkViewObj& v) const;
   // vulkan-pipeline.cpp
   VkPipeline GraphicsPipeline(const PipelineState& s, VkPipelineLayout layout, const char* call);
-  VkPipeline CachedGraphicsPipeline(const PipelineState& s, uint64_t vsUid, uint64_t psUid, VkPipelineLayout layout, const char* call);
+  VkPipeline CachedGraphicsPipeline(const PipelineState& s, uint32_t dirty, uint64_t vsUid, uint64_t psUid, VkPipelineLayout layout,
+                                    const char* call);
   VkPipeline ComputePipeline(const VkShaderObj& cs, const char* call);
   // vulkan-context.cpp
   void BeginRendering(const PipelineState& s);
@@ -635,6 +636,11 @@ class VulkanContext final : public detail::ContextBackend {
   // Pipelines recently resolved, by the uids of what selects them (objects are immutable and uids
   // never reused): a state change back to a seen combination skips building and hashing the key.
   std::array<std::pair<PipelineIdentity, VkPipeline>, 64> recentPipelines_{};
+  // The targets' part of the identity and its hash, redone only when the targets change: a state
+  // change between draws into the same targets (bench-rhi's state case) paid for nine uids each.
+  std::array<uint64_t, SIMULTANEOUS_RENDER_TARGET_COUNT + 1> pipelineTargets_{};
+  uint64_t pipelineTargetsHash_ = 0;
+  bool pipelineTargetsValid_ = false;
   std::pair<uint64_t, uint64_t> layoutShaders_{};  // VS, PS uids currentLayout_ was looked up for
   std::vector<DescriptorItem> scratchItems_;
   // Sets written in this command buffer, by content: going back to a combination seen in the

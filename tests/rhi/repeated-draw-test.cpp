@@ -231,6 +231,48 @@ TEST_P(RepeatedDrawTest, ADepthClearDoesNotTurnDepthWritesOnForTheNextDraw) {
   for (uint32_t p = 0; p < W * H; ++p) ASSERT_EQ(d[p], 1.0f) << "pixel " << p % W << "," << p / W;
 }
 
+// Targets switched between draws with nothing else in between (no clear, copy or barrier ends the
+// pass): each draw lands in the targets bound for it. Two targets of one format and one of another,
+// so both the pass (Vulkan keeps it open while the targets did not change) and the pipeline (its
+// identity keeps the targets' part between target changes) must follow the switch.
+TEST_P(RepeatedDrawTest, TargetsSwitchedBetweenDrawsReceiveTheirOwnDraws) {
+  const uint32_t W = 32, H = 4;
+  Target targets[3] = {MakeTarget(device(), W, H, FORMAT_R32G32B32A32_FLOAT), MakeTarget(device(), W, H, FORMAT_R32G32B32A32_FLOAT),
+                       MakeTarget(device(), W, H, FORMAT_R32_FLOAT)};
+  Ref<VertexShader> vs = device().CreateVertexShader(CompileHlsl(kStripVS, "vs_5_0", "main"));
+  Ref<PixelShader> ps = device().CreatePixelShader(CompileHlsl(R"(
+float4 main(float4 p : SV_Position) : SV_Target { return float4(1, 1, 1, 1); }
+)",
+                                                               "ps_5_0", "main"));
+  const float zero[4] = {0, 0, 0, 0};
+  for (Target& t : targets) ctx().ClearRenderTargetView(t.rtv.get(), zero);
+  BindPass(ctx(), targets[0], W, H, vs.get(), ps.get());
+  // Two rounds over the three targets first, so every target is already an attachment when the
+  // strips are drawn: no layout barrier is left to close the pass at a switch.
+  for (uint32_t round = 0; round < 2; ++round)
+    for (Target& t : targets) {
+      RenderTargetView* rtvs[] = {t.rtv.get()};
+      ctx().OMSetRenderTargets(1, rtvs, nullptr);
+      ctx().Draw(0, 0);
+    }
+  // Strip i goes to target i % 3.
+  for (uint32_t i = 0; i < 8; ++i) {
+    RenderTargetView* rtvs[] = {targets[i % 3].rtv.get()};
+    ctx().OMSetRenderTargets(1, rtvs, nullptr);
+    ctx().Draw(4, 4 * i);
+  }
+  for (uint32_t k = 0; k < 3; ++k) {
+    const uint32_t channels = k == 2 ? 1 : 4;
+    std::vector<float> px = ReadTextureAs<float>(device(), ctx(), targets[k].texture.get());
+    for (uint32_t y = 0; y < H; ++y)
+      for (uint32_t x = 0; x < W; ++x) {
+        const float want = (x / 4) % 3 == k ? 1.0f : 0.0f;
+        for (uint32_t c = 0; c < channels; ++c)
+          ASSERT_EQ(px[(y * W + x) * channels + c], want) << "target " << k << " pixel " << x << "," << y << " channel " << c;
+      }
+  }
+}
+
 // The id of the error the call throws, or none.
 template <class F>
 std::optional<ErrorId> ErrorOf(F&& f) {
