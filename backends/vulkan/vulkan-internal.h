@@ -102,6 +102,8 @@ class Allocator {
   void Free(Allocation& a);
   // dedicated: a VkBuffer of its own (offset 0), for drivers that ignore binding offsets somewhere.
   BufferRange AllocateBuffer(VkDeviceSize size, MemoryKind kind, const char* call, const std::string& object, bool dedicated = false);
+  // A range of an existing block, or false when a new block (and so a name for its errors) is needed.
+  bool SuballocateBuffer(VkDeviceSize size, MemoryKind kind, BufferRange* out);
   void Free(BufferRange& r);
   VkDeviceSize BufferAlignment() const { return bufferAlign_; }
 

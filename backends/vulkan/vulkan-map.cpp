@@ -77,7 +77,10 @@ void VulkanContext::Rename(VkBufferObj& b) {
     fresh = b.retired.front().range;
     b.retired.pop_front();
   }
-  if (!fresh) fresh = dev_->alloc.AllocateBuffer(b.range.size, b.kind, "Map", DescribeObject(b.owner), b.ownVkBuffer);
+  // The object's name is built only when a new block may fail: per rename it was a string of ~600
+  // instructions (bench-rhi's shadow case renames a cbuffer every draw).
+  if (!fresh && (b.ownVkBuffer || !dev_->alloc.SuballocateBuffer(b.range.size, b.kind, &fresh)))
+    fresh = dev_->alloc.AllocateBuffer(b.range.size, b.kind, "Map", DescribeObject(b.owner), b.ownVkBuffer);
   b.retired.push_back({b.range, b.lastUse});
   b.range = fresh;
   // What the move invalidates for draws that keep their bindings (KeepDescriptors, BindVertexBuffers).

@@ -218,28 +218,37 @@ BufferRange Allocator::AllocateBuffer(VkDeviceSize size, MemoryKind kind, const 
     out.mapped = out.memory.mapped;
     return out;
   }
+  if (SuballocateBuffer(size, kind, &out)) return out;
+  auto b = std::make_unique<BufBlock>();
+  b->kind = kind;
+  b->buffer = createBuffer(kBufferBlockSize, &b->memory);
+  BufBlock* block = b.get();
+  bufBlocks_.push_back(std::move(b));
   VkDeviceSize off = 0;
-  BufBlock* block = nullptr;
-  for (auto& b : bufBlocks_) {
-    if (b->kind == kind && b->ranges.Allocate(size, bufferAlign_, &off)) {
-      block = b.get();
-      break;
-    }
-  }
-  if (!block) {
-    auto b = std::make_unique<BufBlock>();
-    b->kind = kind;
-    b->buffer = createBuffer(kBufferBlockSize, &b->memory);
-    b->ranges.Allocate(size, bufferAlign_, &off);
-    block = b.get();
-    bufBlocks_.push_back(std::move(b));
-  }
+  block->ranges.Allocate(size, bufferAlign_, &off);
   out.buffer = block->buffer;
   out.offset = off;
   out.size = size;
   out.mapped = block->memory.mapped ? block->memory.mapped + off : nullptr;
   out.block = block;
   return out;
+}
+
+bool Allocator::SuballocateBuffer(VkDeviceSize size, MemoryKind kind, BufferRange* out) {
+  size = std::max<VkDeviceSize>(size, 4);
+  if (size > kBufferDedicatedThreshold) return false;
+  for (auto& b : bufBlocks_) {
+    VkDeviceSize off = 0;
+    if (b->kind != kind || !b->ranges.Allocate(size, bufferAlign_, &off)) continue;
+    *out = BufferRange{};
+    out->buffer = b->buffer;
+    out->offset = off;
+    out->size = size;
+    out->mapped = b->memory.mapped ? b->memory.mapped + off : nullptr;
+    out->block = b.get();
+    return true;
+  }
+  return false;
 }
 
 void Allocator::Free(BufferRange& r) {
