@@ -97,8 +97,10 @@ HlslcCommand ParseHlslcArguments(const std::vector<std::string>& argv) {
     const std::string& a = argv[i];
     bool dash = a.size() > 1 && a[0] == '-';
     // "/Zpr" is an option; "/home/me/shader.hlsl" (an existing path, or anything unknown with a
-    // second '/') is the input file.
-    bool slash = a.size() > 1 && a[0] == '/' && !std::filesystem::exists(a);
+    // second '/') is the input file. The non-throwing query: a name the file system cannot even
+    // look up (longer than NAME_MAX, found by fuzzing) is not an existing path, not a crash.
+    std::error_code ignored;
+    bool slash = a.size() > 1 && a[0] == '/' && !std::filesystem::exists(a, ignored);
     if (dash || slash) {
       if (ApplyOption(argv, i, a.substr(1), c)) continue;
       if (dash || a.find('/', 1) == std::string::npos) throw std::invalid_argument("unknown option " + a + " (valid: " + HlslcValidOptions() + ")");
