@@ -204,6 +204,7 @@ void GLContext::Draw(const PipelineState& s, uint32_t dirty, const detail::DrawA
       glDrawArraysInstancedBaseInstance(mode, GLint(a.start), GLsizei(a.count), GLsizei(a.instanceCount), a.startInstance);
       break;
     case detail::DrawArgs::DrawIndexed: {
+      SetPrimitiveRestart(s.cutsAtAllOnesIndex());
       uintptr_t offset = s.indexOffset + uintptr_t(a.start) * indexSize;
       glDrawElementsInstancedBaseVertexBaseInstance(mode, GLsizei(a.count), indexType, reinterpret_cast<const void*>(offset),
                                                     GLsizei(a.instanceCount), a.baseVertex, a.startInstance);
@@ -215,6 +216,7 @@ void GLContext::Draw(const PipelineState& s, uint32_t dirty, const detail::DrawA
       break;
     case detail::DrawArgs::DrawIndexedInstancedIndirect: {
       // D3D11's argument layout is GL's DrawElementsIndirectCommand.
+      SetPrimitiveRestart(s.cutsAtAllOnesIndex());
       if (s.indexOffset) {
         GLuint scratch = IndexScratch(s);
         SetCached(cache_.elementBuffer, scratch, [&] { glVertexArrayElementBuffer(vao_, scratch); });

@@ -83,7 +83,7 @@ constexpr uint32_t kImageUnits = PS_CS_UAV_REGISTER_COUNT;
 
 // What GL currently has set (nullopt: unknown, set on next use).
 struct GLStateCache {
-  std::optional<bool> cull, polygonOffsetFill, polygonOffsetLine, depthClamp, scissorTest;
+  std::optional<bool> cull, polygonOffsetFill, polygonOffsetLine, depthClamp, scissorTest, primitiveRestart;
   std::optional<GLenum> cullFace, frontFace, polygonMode;
   std::optional<std::array<float, 3>> polygonOffset;
   std::array<std::optional<std::array<float, 4>>, VIEWPORT_AND_SCISSORRECT_OBJECT_COUNT_PER_PIPELINE> viewports;
@@ -161,6 +161,7 @@ class GLContext final : public detail::ContextBackend {
   void ApplyDepthStencil(const PipelineState& s);
   void ApplyBlend(const PipelineState& s, bool hasPixelShader);
   void SetScissorTest(bool enabled);
+  void SetPrimitiveRestart(bool enabled);  // checked at every indexed draw: follows the topology
   void SetColorMask(uint32_t drawBuffer, uint8_t mask);
   void SetDepthMask(bool write);
   void SetStencilWriteMask(GLuint mask);

@@ -154,12 +154,12 @@ void GLDevice::Init(const DeviceDesc& desc) {
   info_.validationEnabled = desc.debug;
 
   // D3D11 conventions (see DEVELOPERS.md): z in [0, 1] with the VS flipping y, first-vertex
-  // flat shading, seamless cubes, sRGB encoding on write, strips always cut at 0xffff(ffff).
+  // flat shading, seamless cubes, sRGB encoding on write. Strips cut at 0xffff(ffff): restart
+  // follows the topology at each indexed draw (GLContext::SetPrimitiveRestart).
   glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
   glProvokingVertex(GL_FIRST_VERTEX_CONVENTION);
   glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
   glEnable(GL_FRAMEBUFFER_SRGB);
-  glEnable(GL_PRIMITIVE_RESTART_FIXED_INDEX);
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
 

@@ -173,6 +173,10 @@ void GLContext::SetScissorTest(bool enabled) {
   });
 }
 
+void GLContext::SetPrimitiveRestart(bool enabled) {
+  SetCached(cache_.primitiveRestart, enabled, [&] { Toggle(GL_PRIMITIVE_RESTART_FIXED_INDEX, enabled); });
+}
+
 void GLContext::SetColorMask(uint32_t i, uint8_t m) {
   SetCached(cache_.colorMasks[i], m, [&] {
     glColorMaski(i, (m & 1) != 0, (m & 2) != 0, (m & 4) != 0, (m & 8) != 0);

@@ -120,8 +120,7 @@ void VulkanContext::SetDynamicState(const PipelineState& s) {
   d.bias = {bias.constant, bias.clamp, bias.slope};
   std::copy(s.blendFactor.begin(), s.blendFactor.end(), d.blendFactor.begin());
   d.stencilRef = s.stencilRef & 0xff;
-  // D3D11 always cuts strips at the all-ones index.
-  d.strip = s.topology == PRIMITIVE_TOPOLOGY_TRIANGLESTRIP || s.topology == PRIMITIVE_TOPOLOGY_LINESTRIP;
+  d.strip = s.cutsAtAllOnesIndex();
   // Only the values that changed are recorded: any state-object change brings us here, and every
   // vkCmdSet* is an allocation in the driver's command stream (bench-rhi's state case).
   const DynamicValues& o = lastDynamic_;

@@ -95,6 +95,44 @@ TEST_P(DrawTest, StripsRestartAtAllOnesIndex) {
   EXPECT_EQ(Read(), expect);
 }
 
+// Lists have no cut index: 0xffff is vertex 65535, as in D3D11 (and DXVK), while strips drawn
+// between the lists still cut there. The topology switches list -> strip -> list in one context,
+// so a backend that follows the topology with its restart state must switch it both ways.
+TEST_P(DrawTest, ListsReadTheAllOnesIndexAsAVertexWhileStripsCutThere) {
+  const uint32_t W = 16, H = 1;
+  SetUpPipeline(W, H);
+  std::vector<std::pair<float, float>> pts(65536, {-10.0f, -10.0f});  // off the target
+  pts[0] = {0.5f, 0.5f};
+  pts[1] = {1.5f, 0.5f};
+  pts[2] = {10.5f, 0.5f};  // strip: 2-3 covers pixel 10, 4-5 pixel 13; across the cut 8..12
+  pts[3] = {11.5f, 0.5f};
+  pts[4] = {13.5f, 0.5f};
+  pts[5] = {14.5f, 0.5f};
+  pts[0xffff] = {8.5f, 0.5f};
+  Ref<Buffer> vb = Vertices(pts);
+  const uint16_t points[] = {0, 0xffff, 1};
+  const uint16_t strip[] = {2, 3, 0xffff, 4, 5};
+  Ref<Buffer> ibPoints = MakeBuffer(device(), BIND_INDEX_BUFFER, points, sizeof(points));
+  Ref<Buffer> ibStrip = MakeBuffer(device(), BIND_INDEX_BUFFER, strip, sizeof(strip));
+  SetValue(1);
+  ctx().IASetPrimitiveTopology(PRIMITIVE_TOPOLOGY_POINTLIST);
+  ctx().IASetIndexBuffer(ibPoints.get(), FORMAT_R16_UINT, 0);
+  ctx().DrawIndexed(3, 0, 0);
+  SetValue(2);
+  ctx().IASetPrimitiveTopology(PRIMITIVE_TOPOLOGY_LINESTRIP);
+  ctx().IASetIndexBuffer(ibStrip.get(), FORMAT_R16_UINT, 0);
+  ctx().DrawIndexed(5, 0, 0);
+  SetValue(3);
+  ctx().IASetPrimitiveTopology(PRIMITIVE_TOPOLOGY_POINTLIST);
+  ctx().IASetIndexBuffer(ibPoints.get(), FORMAT_R16_UINT, 2);
+  ctx().DrawIndexed(1, 0, 0);  // the 0xffff alone
+  std::vector<float> expect(W, 0.0f);
+  expect[0] = expect[1] = 1;
+  expect[10] = expect[13] = 2;
+  expect[8] = 3;
+  EXPECT_EQ(Read(), expect);
+}
+
 // StartIndexLocation, BaseVertexLocation (also negative) and StartVertexLocation pick the
 // right vertices; an index buffer bound at an offset counts from there.
 TEST_P(DrawTest, StartLocationsAndBaseVertex) {
