@@ -62,9 +62,10 @@ struct PipelineState {
     float constant = 0.0f, slope = 0.0f, clamp = 0.0f;
   };
   DepthBias depthBias(const DeviceInfo& info) const;
-  // D3D11 always cuts strips at the all-ones index (0xffff / 0xffffffff); list topologies have no
-  // cut and read that index as a vertex, as DXVK does. Restart stays off for lists: Vulkan allows
-  // it there only with an extra feature, and llvmpipe scans every index of a draw while it is on.
+  // D3D11 cuts strips at the all-ones index (0xffff / 0xffffffff: "generating multiple strips").
+  // Lists read it as an ordinary index on both backends: Vulkan restarts lists only with
+  // VK_EXT_primitive_topology_list_restart, and llvmpipe scans every index of a draw while
+  // GL's restart is on.
   bool cutsAtAllOnesIndex() const { return topology == PRIMITIVE_TOPOLOGY_TRIANGLESTRIP || topology == PRIMITIVE_TOPOLOGY_LINESTRIP; }
   const BLEND_DESC& blend() const;
   StageBindings& stage(ShaderStage s) { return stages[size_t(s)]; }

@@ -95,8 +95,8 @@ TEST_P(DrawTest, StripsRestartAtAllOnesIndex) {
   EXPECT_EQ(Read(), expect);
 }
 
-// Lists have no cut index: 0xffff is vertex 65535, as in D3D11 (and DXVK), while strips drawn
-// between the lists still cut there. The topology switches list -> strip -> list in one context,
+// D3D11 defines the all-ones cut for strips; in a list both backends read 0xffff as vertex
+// 65535, while strips drawn between the lists still cut there. The topology switches list -> strip -> list in one context,
 // so a backend that follows the topology with its restart state must switch it both ways.
 TEST_P(DrawTest, ListsReadTheAllOnesIndexAsAVertexWhileStripsCutThere) {
   const uint32_t W = 16, H = 1;
