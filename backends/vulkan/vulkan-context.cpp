@@ -179,12 +179,12 @@ VkPipeline VulkanContext::CachedGraphicsPipeline(const PipelineState& s, uint32_
                                                  const char* call) {
   auto uid = [](const auto& ref) { return ref ? ref->UniqueId() : uint64_t(0); };
   constexpr uint64_t kMix = 0x9e3779b97f4a7c15ull;
-  if (!pipelineTargetsValid_ || (dirty & DIRTY_RENDER_TARGETS)) {
+  // The core starts a context with every dirty bit set, so the first draw fills these.
+  if (dirty & DIRTY_RENDER_TARGETS) {
     for (size_t i = 0; i < SIMULTANEOUS_RENDER_TARGET_COUNT; ++i) pipelineTargets_[i] = uid(s.renderTargets[i]);
     pipelineTargets_[SIMULTANEOUS_RENDER_TARGET_COUNT] = uid(s.depthStencil);
     pipelineTargetsHash_ = 0;
     for (uint64_t v : pipelineTargets_) pipelineTargetsHash_ = (pipelineTargetsHash_ ^ v) * kMix;
-    pipelineTargetsValid_ = true;
   }
   PipelineIdentity id;
   id.objects = {vsUid, psUid, uid(s.inputLayout), uid(s.rasterizerState), uid(s.depthStencilState), uid(s.blendState)};

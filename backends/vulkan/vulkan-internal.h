@@ -111,6 +111,7 @@ class Allocator {
   struct MemBlock;
   struct BufBlock;
   uint32_t FindType(uint32_t typeBits, MemoryKind kind, const char* call, const std::string& object) const;
+  bool TakeRange(BufBlock& b, VkDeviceSize size, BufferRange* out);  // a range of b, if it has room
   Allocation AllocateDedicated(VkDeviceSize size, uint32_t type, const char* call, const std::string& object);
 
   VulkanDevice* dev_ = nullptr;
@@ -642,7 +643,6 @@ class VulkanContext final : public detail::ContextBackend {
   // change between draws into the same targets (bench-rhi's state case) paid for nine uids each.
   std::array<uint64_t, SIMULTANEOUS_RENDER_TARGET_COUNT + 1> pipelineTargets_{};
   uint64_t pipelineTargetsHash_ = 0;
-  bool pipelineTargetsValid_ = false;
   std::pair<uint64_t, uint64_t> layoutShaders_{};  // VS, PS uids currentLayout_ was looked up for
   std::vector<DescriptorItem> scratchItems_;
   // Sets written in this command buffer, by content: going back to a combination seen in the

@@ -222,32 +222,28 @@ BufferRange Allocator::AllocateBuffer(VkDeviceSize size, MemoryKind kind, const 
   auto b = std::make_unique<BufBlock>();
   b->kind = kind;
   b->buffer = createBuffer(kBufferBlockSize, &b->memory);
-  BufBlock* block = b.get();
   bufBlocks_.push_back(std::move(b));
-  VkDeviceSize off = 0;
-  block->ranges.Allocate(size, bufferAlign_, &off);
-  out.buffer = block->buffer;
-  out.offset = off;
-  out.size = size;
-  out.mapped = block->memory.mapped ? block->memory.mapped + off : nullptr;
-  out.block = block;
+  TakeRange(*bufBlocks_.back(), size, &out);  // a fresh block holds any size under the threshold
   return out;
+}
+
+bool Allocator::TakeRange(BufBlock& b, VkDeviceSize size, BufferRange* out) {
+  VkDeviceSize off = 0;
+  if (!b.ranges.Allocate(size, bufferAlign_, &off)) return false;
+  *out = BufferRange{};
+  out->buffer = b.buffer;
+  out->offset = off;
+  out->size = size;
+  out->mapped = b.memory.mapped ? b.memory.mapped + off : nullptr;
+  out->block = &b;
+  return true;
 }
 
 bool Allocator::SuballocateBuffer(VkDeviceSize size, MemoryKind kind, BufferRange* out) {
   size = std::max<VkDeviceSize>(size, 4);
   if (size > kBufferDedicatedThreshold) return false;
-  for (auto& b : bufBlocks_) {
-    VkDeviceSize off = 0;
-    if (b->kind != kind || !b->ranges.Allocate(size, bufferAlign_, &off)) continue;
-    *out = BufferRange{};
-    out->buffer = b->buffer;
-    out->offset = off;
-    out->size = size;
-    out->mapped = b->memory.mapped ? b->memory.mapped + off : nullptr;
-    out->block = b.get();
-    return true;
-  }
+  for (auto& b : bufBlocks_)
+    if (b->kind == kind && TakeRange(*b, size, out)) return true;
   return false;
 }
 
